@@ -1,0 +1,4 @@
+//! knotshape: B-spline/NURBS evaluation and knot-pair shape modification, with an HTTP edge.
+#![cfg_attr(test, allow(clippy::unwrap_used))]
+
+pub mod spline;

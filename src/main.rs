@@ -1,0 +1,2 @@
+//! The knotshape binary.
+fn main() {}
