@@ -152,7 +152,7 @@ pub fn candidate(curve: &Curve, t: f64, side: Side, target: Option<Point>) -> Ca
     let e2 = sub(triangle[2], triangle[1]);
     let normal = cross(e1, e2);
     let area2 = norm(normal);
-    if !(area2 > DEGENERACY_TOLERANCE * size * size) {
+    if area2.is_nan() || area2 <= DEGENERACY_TOLERANCE * size * size {
         candidate.not_applicable = Some(NotApplicable::DegenerateTriangle);
         return candidate;
     }

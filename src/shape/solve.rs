@@ -264,7 +264,7 @@ pub fn solve(
                     .collect();
                 let point = curve.point_with_knots(&new_knots, t);
                 let residual = distance(point, target);
-                if !(residual <= RESIDUAL_SAFEGUARD * triangle_size(&triangle)) {
+                if residual.is_nan() || residual > RESIDUAL_SAFEGUARD * triangle_size(&triangle) {
                     continue;
                 }
                 let affected_domain = affected_domain(curve, &new_knots, &changed_knots);
@@ -353,7 +353,7 @@ pub fn max_deviation(curve: &Curve, new_knots: &[f64], interval: (f64, f64)) -> 
     // Both curves are defined on the intersection of their domains.
     let lo = interval.0.max(old_knots[p]).max(new_knots[p]);
     let hi = interval.1.min(old_knots[end]).min(new_knots[end]);
-    if !(hi > lo) {
+    if hi <= lo {
         return 0.0;
     }
     let gap = |u: f64| {
