@@ -16,14 +16,15 @@ pub use candidate::{
     candidate, frame_to_point,
 };
 pub use pairs::{
-    FRAME_ZERO_TOLERANCE, KNOT_TOLERANCE, KnotPair, LocalKnot, LocalKnots, solve_pair,
+    CLAMP_TOLERANCE, FRAME_ZERO_TOLERANCE, KNOT_TOLERANCE, KnotPair, LocalKnot, LocalKnots,
+    solve_pair,
 };
 pub use regions::{
     CandidateRegions, DEFAULT_RELATIVE_TOLERANCE, PolygonOptions, RegionPolygon, domain_corners,
     frame_of, region_polygons,
 };
 pub use solve::{
-    CandidateOutcome, DEVIATION_REFINEMENT_STEPS, DEVIATION_SAMPLES, RESIDUAL_SAFEGUARD,
+    CandidateOutcome, DEVIATION_REFINEMENT_STEPS, DEVIATION_SAMPLES_PER_PIECE, RESIDUAL_TOLERANCE,
     RegionMembership, ShapeError, ShapeField, ShapeQuery, Solution, SolveOptions, SolveOutcome,
     affected_domain, max_deviation, membership, solve, target_point,
 };

@@ -10,14 +10,20 @@
 //! under the monotonicity condition `L <= a <= b <= t <= c <= e <= R`, `c > b`. Each pair
 //! reduces to at most one quadratic; there is no iterative root finding.
 
-/// Relative tolerance of the monotonicity condition: a bound is violated by at most
-/// `KNOT_TOLERANCE · (R - L)` before a root is rejected; smaller violations are clamped onto
-/// the bound, and a knot within it of its old value keeps its old value exactly.
+/// A solved knot within `KNOT_TOLERANCE · (R - L)` of its old value keeps its old value
+/// exactly (so unchanged knots are bit-identical and not reported as changed).
 pub const KNOT_TOLERANCE: f64 = 1e-12;
 
-/// Frame coordinates with `|x| <= FRAME_ZERO_TOLERANCE` (likewise `y`) count as exactly 0,
-/// so that targets on the triangle's edges meet the forced cases `c = t` (x = 0), `b = t`
-/// (y = 0) despite rounding.
+/// Relative tolerance of the monotonicity condition: a root may violate a bound by at most
+/// `CLAMP_TOLERANCE · (R - L)`; it is then clamped onto the bound. Near a region's edge the
+/// rounding of the target's frame is amplified (e.g. `∂e/∂y = -(e-b)/y`), so this is looser
+/// than rounding; the solver keeps a clamped root only if the new curve still lands on the
+/// target ([`crate::shape::RESIDUAL_TOLERANCE`]).
+pub const CLAMP_TOLERANCE: f64 = 1e-8;
+
+/// Frame coordinates with `|x| <= FRAME_ZERO_TOLERANCE` (likewise `y`) count as exactly 0, and
+/// within it of 1 as exactly 1, so that targets on the triangle's edges and vertices meet the
+/// forced cases `c = t` (x = 0), `b = t` (y = 0) despite rounding.
 pub const FRAME_ZERO_TOLERANCE: f64 = 1e-12;
 
 /// One of the six knot pairs: which two of `a = v_{j-1}`, `b = v_j`, `c = v_{j+1}`,
@@ -204,38 +210,118 @@ fn e_from_y(y: f64, k: &LocalKnots, b: f64, c: f64) -> Option<Unknown> {
     (c > b).then(|| Unknown::Value(b + (k.t - b) * (k.t - b) / (y * (c - b))))
 }
 
-/// Real roots of `A z^2 + B z + C = 0`, by the numerically stable formula
-/// `q = -(B + sign(B) √D) / 2`, roots `q / A` and `C / q`. `A` negligible against `B` and `C`
-/// makes it linear; a discriminant negative only by rounding counts as a double root.
-fn quadratic_roots(a: f64, b: f64, c: f64) -> ([f64; 2], usize) {
-    let scale = a.abs().max(b.abs()).max(c.abs());
-    if scale == 0.0 {
-        return ([0.0; 2], 0);
+/// How far a free knot may move from `t` before the knot that depends on it leaves its range
+/// (which has `room` between `t` and its bound): `room · w / (1 - w)` for `w < 1` (unbounded at `w = 1`). When there is no room
+/// (the bound equals `t`), the clamp tolerance `slack` stands in for it, so that rounding in
+/// `w` near 1 does not empty the interval; otherwise the exact room is used, so the dependent
+/// knot lands on its bound exactly.
+fn free_reach(room: f64, w: f64, slack: f64) -> f64 {
+    if w >= 1.0 {
+        return f64::INFINITY;
     }
-    if a.abs() <= 1e-14 * scale {
+    let room = if room > 0.0 { room } else { slack };
+    room * w / (1.0 - w)
+}
+
+/// A free knot's value in `(lo, hi]`: its old value when inside, else the nearest admissible
+/// one (`hi`, or the midpoint when the old value is at the open end). `None` when empty.
+fn choose_free_above(old: f64, lo: f64, hi: f64) -> Option<f64> {
+    if hi <= lo {
+        None
+    } else if old > hi {
+        Some(hi)
+    } else if old > lo {
+        Some(old)
+    } else {
+        Some(0.5 * (lo + hi))
+    }
+}
+
+/// A free knot's value in `[lo, hi)`: its old value when inside, else the nearest admissible
+/// one (`lo`, or the midpoint when the old value is at the open end). `None` when empty.
+fn choose_free_below(old: f64, lo: f64, hi: f64) -> Option<f64> {
+    if hi <= lo {
+        None
+    } else if old < lo {
+        Some(lo)
+    } else if old < hi {
+        Some(old)
+    } else {
+        Some(0.5 * (lo + hi))
+    }
+}
+
+/// Coefficients (normalised as below) at most this large count as zero.
+const COEFFICIENT_ZERO: f64 = 1e-13;
+
+/// A discriminant `D = B² - 4AC` with `|D| <= DISCRIMINANT_ROUNDING · (B² + |4AC|)` counts
+/// as 0 (a double root).
+const DISCRIMINANT_ROUNDING: f64 = 1e-14;
+
+/// The real roots of a quadratic, or every value when it vanishes identically.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Roots {
+    /// The listed roots (0, 1 or 2 of them).
+    Some([f64; 2], usize),
+    /// `0 = 0`: the unknown is left free.
+    All,
+}
+
+/// Roots of `A z^2 + B z + C = 0` where `z` is a knot offset of typical size `scale`.
+///
+/// The coefficients are normalised to `A`, `B / scale`, `C / scale^2` (all dimensionless);
+/// all three within [`COEFFICIENT_ZERO`] of 0 means the equation holds for every `z`.
+/// Otherwise the numerically stable formula `q = -(B + sign(B) √D) / 2`, roots `q / A` and
+/// `C / q`; `A = 0` makes it linear, and a discriminant negative only by rounding counts as a
+/// double root.
+fn quadratic_roots(a: f64, b: f64, c: f64, scale: f64) -> Roots {
+    let (b, c) = (b / scale, c / scale / scale);
+    if a.abs().max(b.abs()).max(c.abs()) <= COEFFICIENT_ZERO {
+        return Roots::All;
+    }
+    if a == 0.0 {
         return if b == 0.0 {
-            ([0.0; 2], 0)
+            Roots::Some([0.0; 2], 0)
         } else {
-            ([-c / b, 0.0], 1)
+            Roots::Some([-c / b * scale, 0.0], 1)
         };
     }
     let mut discriminant = b * b - 4.0 * a * c;
-    if discriminant < 0.0 {
-        if discriminant < -1e-14 * (b * b + (4.0 * a * c).abs()) {
-            return ([0.0; 2], 0);
-        }
+    // Within rounding of zero (either sign) it is a double root: rounding would otherwise
+    // split it into two roots about √ε apart, or lose it.
+    if discriminant.abs() <= DISCRIMINANT_ROUNDING * (b * b + (4.0 * a * c).abs()) {
         discriminant = 0.0;
+    } else if discriminant < 0.0 {
+        return Roots::Some([0.0; 2], 0);
     }
     let q = -0.5 * (b + b.signum() * discriminant.sqrt());
     if q == 0.0 {
-        return ([0.0, 0.0], 1);
+        return Roots::Some([0.0; 2], 1);
     }
-    ([q / a, c / q], 2)
+    Roots::Some([q / a * scale, c / q * scale], 2)
+}
+
+/// The roots of a quadratic as candidate values of one unknown; a vanishing quadratic leaves
+/// the unknown free, so it keeps its old value `old`.
+fn roots_or_old(roots: Roots, old: f64) -> ([f64; 2], usize) {
+    match roots {
+        Roots::Some(values, count) => (values, count),
+        Roots::All => ([old, 0.0], 1),
+    }
 }
 
 /// Candidate values `[a, b, c, e]` for `pair` before the monotonicity check; `Free` unknowns
 /// keep their old value, clamped into range. At most two (one per quadratic root).
-fn raw_solutions(pair: KnotPair, k: &LocalKnots, x: f64, y: f64) -> ([[f64; 4]; 2], usize) {
+///
+/// `k` is shifted so that `t = 0` (better conditioned, and the forced cases become exact
+/// zeros); `scale` is the local knot scale `R - L`.
+fn raw_solutions(
+    pair: KnotPair,
+    k: &LocalKnots,
+    x: f64,
+    y: f64,
+    scale: f64,
+) -> ([[f64; 4]; 2], usize) {
     let mut out = [[0.0; 4]; 2];
     let mut count = 0;
     let mut push = |a: Option<Unknown>, b: f64, c: f64, e: Option<Unknown>, old: &LocalKnots| {
@@ -255,23 +341,61 @@ fn raw_solutions(pair: KnotPair, k: &LocalKnots, x: f64, y: f64) -> ([[f64; 4]; 
         }
     };
     let t = k.t;
+    // An unknown that feeds the second equation snaps onto t (= 0 here) when rounding left it
+    // within the knot tolerance, so that the forced cases (x = 0 needs c = t, y = 0 needs
+    // b = t) are recognised exactly.
+    let snap_to_t = |v: f64| {
+        if (v - t).abs() <= CLAMP_TOLERANCE * scale {
+            t
+        } else {
+            v
+        }
+    };
     match pair {
         KnotPair::Omega1 => {
             // y-equation, quadratic in b: (1-y) b^2 + (y(e+c) - 2t) b + (t^2 - y e c) = 0.
-            let (roots, n) =
-                quadratic_roots(1.0 - y, y * (k.e + k.c) - 2.0 * t, t * t - y * k.e * k.c);
+            let roots = quadratic_roots(
+                1.0 - y,
+                y * (k.e + k.c) - 2.0 * t,
+                t * t - y * k.e * k.c,
+                scale,
+            );
+            let (roots, n) = roots_or_old(roots, k.b);
             for &b in &roots[..n] {
                 push(a_from_x(x, k, b, k.c), b, k.c, Some(Unknown::Value(k.e)), k);
             }
         }
         KnotPair::Omega2 => {
-            if x == 0.0 {
+            if y == 0.0 && x > 0.0 {
+                // y = 0 forces b = t; the x-equation x (c - a)(c - t) = (c - t)^2 with c > t
+                // is then linear: (1 - x) c = t - x a. At x = 1 it needs a = t and leaves c free.
+                let c = if x < 1.0 {
+                    (t - x * k.a) / (1.0 - x)
+                } else if (k.a - t).abs() <= CLAMP_TOLERANCE * scale {
+                    k.c
+                } else {
+                    return (out, 0);
+                };
+                push(
+                    Some(Unknown::Value(k.a)),
+                    t,
+                    c,
+                    Some(Unknown::Value(k.e)),
+                    k,
+                );
+            } else if x == 0.0 {
                 // x = 0 forces c = t; the y-equation then gives b = (t - y e) / (1 - y), or,
                 // at y = 0, b = t: a triple knot at t, where the curve passes through d_{j-1}.
+                // At y = 1 with e = t every b in [a, t) gives y = 1: b is free.
                 let b = if y == 0.0 {
                     t
                 } else if y < 1.0 {
                     (t - y * k.e) / (1.0 - y)
+                } else if y == 1.0 && (k.e - t).abs() <= CLAMP_TOLERANCE * scale {
+                    match choose_free_below(k.b, k.a, t) {
+                        Some(b) => b,
+                        None => return (out, 0),
+                    }
                 } else {
                     return (out, 0);
                 };
@@ -286,11 +410,13 @@ fn raw_solutions(pair: KnotPair, k: &LocalKnots, x: f64, y: f64) -> ([[f64; 4]; 
                 // (1-x)(1-x-y) c^2 + (2ty - 2(1-x)(t - xa) - xy(a+e)) c
                 //   + ((t - xa)^2 - y t^2 + x y a e) = 0, then b from the x-equation.
                 let s = t - x * k.a;
-                let (roots, n) = quadratic_roots(
+                let roots = quadratic_roots(
                     (1.0 - x) * (1.0 - x - y),
                     2.0 * t * y - 2.0 * (1.0 - x) * s - x * y * (k.a + k.e),
                     s * s - y * t * t + x * y * k.a * k.e,
+                    scale,
                 );
+                let (roots, n) = roots_or_old(roots, k.c);
                 for &c in &roots[..n] {
                     if let Some(Unknown::Value(b)) = b_from_x(x, k, k.a, c) {
                         push(
@@ -306,8 +432,13 @@ fn raw_solutions(pair: KnotPair, k: &LocalKnots, x: f64, y: f64) -> ([[f64; 4]; 
         }
         KnotPair::Omega3 => {
             // x-equation, quadratic in c: (1-x) c^2 + (x(a+b) - 2t) c + (t^2 - x a b) = 0.
-            let (roots, n) =
-                quadratic_roots(1.0 - x, x * (k.a + k.b) - 2.0 * t, t * t - x * k.a * k.b);
+            let roots = quadratic_roots(
+                1.0 - x,
+                x * (k.a + k.b) - 2.0 * t,
+                t * t - x * k.a * k.b,
+                scale,
+            );
+            let (roots, n) = roots_or_old(roots, k.c);
             for &c in &roots[..n] {
                 push(Some(Unknown::Value(k.a)), k.b, c, e_from_y(y, k, k.b, c), k);
             }
@@ -315,8 +446,16 @@ fn raw_solutions(pair: KnotPair, k: &LocalKnots, x: f64, y: f64) -> ([[f64; 4]; 
         KnotPair::Omega4 => {
             // c from the y-equation (linear), then a from the x-equation.
             let c = match c_from_y(y, k, k.b, k.e) {
-                Some(Unknown::Value(c)) => c,
-                Some(Unknown::Free) => k.c,
+                Some(Unknown::Value(c)) => snap_to_t(c),
+                // y = 0 with b = t: any c in (t, e] whose a = c - (c-t)/x stays >= L, i.e.
+                // c - t <= (t - L) x / (1 - x), L (see `free_reach`).
+                Some(Unknown::Free) => {
+                    let reach = free_reach(t - k.l, x, CLAMP_TOLERANCE * scale);
+                    match choose_free_above(k.c, t, k.e.min(t + reach)) {
+                        Some(c) => c,
+                        None => return (out, 0),
+                    }
+                }
                 None => return (out, 0),
             };
             push(a_from_x(x, k, k.b, c), k.b, c, Some(Unknown::Value(k.e)), k);
@@ -334,8 +473,16 @@ fn raw_solutions(pair: KnotPair, k: &LocalKnots, x: f64, y: f64) -> ([[f64; 4]; 
         KnotPair::Omega6 => {
             // b from the x-equation (linear), then e from the y-equation.
             let b = match b_from_x(x, k, k.a, k.c) {
-                Some(Unknown::Value(b)) => b,
-                Some(Unknown::Free) => k.b,
+                Some(Unknown::Value(b)) => snap_to_t(b),
+                // x = 0 with c = t: any b in [a, t) whose e = b + (t-b)/y stays <= R, i.e.
+                // t - b <= (R - t) y / (1 - y), R (see `free_reach`).
+                Some(Unknown::Free) => {
+                    let reach = free_reach(k.r - t, y, CLAMP_TOLERANCE * scale);
+                    match choose_free_below(k.b, k.a.max(t - reach), t) {
+                        Some(b) => b,
+                        None => return (out, 0),
+                    }
+                }
                 None => return (out, 0),
             };
             push(Some(Unknown::Value(k.a)), b, k.c, e_from_y(y, k, b, k.c), k);
@@ -354,18 +501,21 @@ fn clamp_within(value: f64, lo: f64, hi: f64, tol: f64) -> Option<f64> {
 
 /// The solutions `[a, b, c, e]` of `pair` for the frame coordinates `(x, y)` that satisfy the
 /// monotonicity condition `L <= a <= b <= t <= c <= e <= R` with `c > b` (within
-/// [`KNOT_TOLERANCE`]; tiny violations clamped onto the bound, values within tolerance of
-/// the old ones snapped back to them). Duplicates are removed; at most two are returned.
+/// [`CLAMP_TOLERANCE`]; small violations clamped onto the bound; values within
+/// [`KNOT_TOLERANCE`] of the old ones snapped back to them). Duplicates are removed; at most two are returned.
 ///
-/// `x` and `y` within [`FRAME_ZERO_TOLERANCE`] of 0 count as 0. Edge cases: `x = 0` forces
+/// `x` and `y` within [`FRAME_ZERO_TOLERANCE`] of 0 (or 1) count as 0 (or 1). Edge cases: `x = 0` forces
 /// `c = t` and `y = 0` forces `b = t`; a knot that the equations then leave undetermined
-/// keeps its old value (clamped into its range). The target `d_{j-1}` (`x = y = 0`) is
+/// (also a quadratic that vanishes identically, e.g. Ω2 with `a = b = t` and `x = 1`) keeps
+/// its old value (clamped into its range). The target `d_{j-1}` (`x = y = 0`) is
 /// reached only by Ω2, through the triple knot `b = c = t` (the curve interpolates
 /// `d_{j-1}` there); every other solution has `c > b`.
 pub fn solve_pair(pair: KnotPair, k: &LocalKnots, x: f64, y: f64) -> ([[f64; 4]; 2], usize) {
     let snap = |v: f64| {
         if v.abs() <= FRAME_ZERO_TOLERANCE {
             0.0
+        } else if (v - 1.0).abs() <= FRAME_ZERO_TOLERANCE {
+            1.0
         } else {
             v
         }
@@ -376,10 +526,22 @@ pub fn solve_pair(pair: KnotPair, k: &LocalKnots, x: f64, y: f64) -> ([[f64; 4];
     if !(x.is_finite() && y.is_finite()) {
         return (result, 0);
     }
-    let tol = KNOT_TOLERANCE * (k.r - k.l).max(f64::MIN_POSITIVE);
-    let (raw, n) = raw_solutions(pair, k, x, y);
+    let scale = (k.r - k.l).max(f64::MIN_POSITIVE);
+    let tol = KNOT_TOLERANCE * scale;
+    let clamp_tol = CLAMP_TOLERANCE * scale;
+    let shifted = LocalKnots {
+        l: k.l - k.t,
+        a: k.a - k.t,
+        b: k.b - k.t,
+        t: 0.0,
+        c: k.c - k.t,
+        e: k.e - k.t,
+        r: k.r - k.t,
+    };
+    let (raw, n) = raw_solutions(pair, &shifted, x, y, scale);
     let [unknown_1, unknown_2] = pair.unknowns();
     for &[a, b, c, e] in &raw[..n] {
+        let (a, b, c, e) = (a + k.t, b + k.t, c + k.t, e + k.t);
         let keep_old = |value: f64, old: f64| {
             if (value - old).abs() <= tol {
                 old
@@ -394,16 +556,16 @@ pub fn solve_pair(pair: KnotPair, k: &LocalKnots, x: f64, y: f64) -> ([[f64; 4];
             keep_old(e, k.e),
         );
         // Bounds of each knot given the fixed ones (only the unknowns can move).
-        let Some(b) = clamp_within(b, k.l, k.t, tol) else {
+        let Some(b) = clamp_within(b, k.l, k.t, clamp_tol) else {
             continue;
         };
-        let Some(a) = clamp_within(a, k.l, b, tol) else {
+        let Some(a) = clamp_within(a, k.l, b, clamp_tol) else {
             continue;
         };
-        let Some(c) = clamp_within(c, k.t, k.r, tol) else {
+        let Some(c) = clamp_within(c, k.t, k.r, clamp_tol) else {
             continue;
         };
-        let Some(e) = clamp_within(e, c, k.r, tol) else {
+        let Some(e) = clamp_within(e, c, k.r, clamp_tol) else {
             continue;
         };
         let triple_knot = x == 0.0 && y == 0.0 && pair == KnotPair::Omega2 && b == k.t && c == k.t;
@@ -416,9 +578,11 @@ pub fn solve_pair(pair: KnotPair, k: &LocalKnots, x: f64, y: f64) -> ([[f64; 4];
             .into_iter()
             .zip(candidate)
             .all(|(knot, value)| knot == unknown_1 || knot == unknown_2 || value == k.get(knot));
-        let duplicate = result[..count]
-            .iter()
-            .any(|s| s.iter().zip(&candidate).all(|(p, q)| (p - q).abs() <= tol));
+        let duplicate = result[..count].iter().any(|s| {
+            s.iter()
+                .zip(&candidate)
+                .all(|(p, q)| (p - q).abs() <= clamp_tol)
+        });
         if fixed_ok && !duplicate {
             result[count] = candidate;
             count += 1;

@@ -6,13 +6,13 @@ use super::pairs::{KnotPair, LocalKnots, solve_pair};
 use crate::spline::vector::{Point, distance};
 use crate::spline::{Curve, Dimension, EvalError};
 
-/// Number of uniform samples of the changed interval in the deviation estimate; the best one
-/// is then refined by golden-section search ([`DEVIATION_REFINEMENT_STEPS`] steps).
-pub const DEVIATION_SAMPLES: usize = 48;
+/// Uniform samples per knot interval (of the old and new knots together) in the deviation
+/// estimate; the best one is then refined by golden-section search.
+pub const DEVIATION_SAMPLES_PER_PIECE: usize = 8;
 
 /// Golden-section steps that refine the deviation's best sample (each shrinks the bracket by
 /// 0.618).
-pub const DEVIATION_REFINEMENT_STEPS: usize = 24;
+pub const DEVIATION_REFINEMENT_STEPS: usize = 20;
 
 /// Why a shape request cannot be answered.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -238,6 +238,9 @@ pub fn solve(
         };
         let j = candidate.span;
         let local = LocalKnots::from_full(knots, j, t);
+        let target_magnitude = target.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let accepted_residual =
+            RESIDUAL_TOLERANCE * triangle_size(&triangle) + 64.0 * f64::EPSILON * target_magnitude;
         let mut regions = Vec::with_capacity(query.pairs.len());
         for &pair in query.pairs {
             let [first, second] = pair.unknowns();
@@ -264,7 +267,7 @@ pub fn solve(
                     .collect();
                 let point = curve.point_with_knots(&new_knots, t);
                 let residual = distance(point, target);
-                if residual.is_nan() || residual > RESIDUAL_SAFEGUARD * triangle_size(&triangle) {
+                if residual.is_nan() || residual > accepted_residual {
                     continue;
                 }
                 let affected_domain = affected_domain(curve, &new_knots, &changed_knots);
@@ -305,10 +308,11 @@ pub fn solve(
     })
 }
 
-/// A numerical safeguard, not the accuracy: a closed-form root whose re-evaluated point misses
-/// the target by more than `RESIDUAL_SAFEGUARD · size` of the triangle is discarded as
-/// ill-conditioned. (Tests hold solutions to 1e-9.)
-pub const RESIDUAL_SAFEGUARD: f64 = 1e-6;
+/// Every solution is verified: the new curve, evaluated by the spline core at `t`, lands within
+/// `RESIDUAL_TOLERANCE · size` of the target (`size`: the control triangle's longest edge),
+/// plus the rounding floor `64 ε |target|`. A root that fails (ill-conditioned, or clamped too
+/// far onto a bound) is discarded.
+pub const RESIDUAL_TOLERANCE: f64 = 1e-9;
 
 /// Membership of the target in every requested region of every requested side: [`solve`]
 /// without the deviation measure.
@@ -344,9 +348,13 @@ pub fn affected_domain(curve: &Curve, new_knots: &[f64], changed_knots: &[usize]
 }
 
 /// Largest distance `|s_old(u) - s_new(u)|` for `u` in `interval` (outside it the two curves
-/// agree) and in both curves' domains: [`DEVIATION_SAMPLES`] uniform samples, then golden-section refinement around the
-/// best one. An estimate from below whose error is that of the refinement when the maximum
-/// lies in the bracket of the best sample.
+/// agree) and in both curves' domains.
+///
+/// Between consecutive knots of the old and the new vector both curves are polynomial (or
+/// rational) pieces, so each piece gets [`DEVIATION_SAMPLES_PER_PIECE`] uniform samples, however
+/// short it is; every sampled local maximum within 10% of the best is then refined by
+/// golden-section search ([`DEVIATION_REFINEMENT_STEPS`] steps). An estimate from below
+/// (every value is a real distance), exact to the refinement when the peak's bump is sampled.
 pub fn max_deviation(curve: &Curve, new_knots: &[f64], interval: (f64, f64)) -> f64 {
     let old_knots = curve.knots();
     let (p, end) = (curve.degree(), curve.control_points().len());
@@ -362,39 +370,61 @@ pub fn max_deviation(curve: &Curve, new_knots: &[f64], interval: (f64, f64)) -> 
             curve.point_with_knots(new_knots, u),
         )
     };
-    let step = (hi - lo) / DEVIATION_SAMPLES as f64;
-    let mut best = (lo, gap(lo));
-    for i in 1..=DEVIATION_SAMPLES {
-        let u = if i == DEVIATION_SAMPLES {
-            hi
-        } else {
-            lo + step * i as f64
-        };
-        let d = gap(u);
-        if d > best.1 {
-            best = (u, d);
+    let mut breaks: Vec<f64> = old_knots
+        .iter()
+        .chain(new_knots)
+        .copied()
+        .filter(|&u| u > lo && u < hi)
+        .chain([lo, hi])
+        .collect();
+    breaks.sort_by(f64::total_cmp);
+    breaks.dedup();
+    let mut samples = Vec::with_capacity(breaks.len() * DEVIATION_SAMPLES_PER_PIECE + 1);
+    samples.push(lo);
+    for piece in breaks.windows(2) {
+        let step = (piece[1] - piece[0]) / DEVIATION_SAMPLES_PER_PIECE as f64;
+        samples.extend((1..DEVIATION_SAMPLES_PER_PIECE).map(|i| piece[0] + step * i as f64));
+        samples.push(piece[1]);
+    }
+    let gaps: Vec<f64> = samples.iter().map(|&u| gap(u)).collect();
+    let best = gaps.iter().copied().fold(0.0, f64::max);
+    // Refine every sampled local maximum that could beat the best sample.
+    let mut refined = best;
+    for i in 0..gaps.len() {
+        let left = i.saturating_sub(1);
+        let right = (i + 1).min(gaps.len() - 1);
+        let local_max = gaps[i] >= gaps[left] && gaps[i] >= gaps[right];
+        if local_max && gaps[i] >= REFINE_FRACTION * best && right > left {
+            refined = refined.max(golden_section_max(&gap, samples[left], samples[right]));
         }
     }
-    // Golden-section search for the maximum in [best - step, best + step] ∩ [lo, hi].
+    refined
+}
+
+/// Sampled local maxima at least this fraction of the best sample are refined.
+const REFINE_FRACTION: f64 = 0.9;
+
+/// The maximum of `f` on `[left, right]` by golden-section search
+/// ([`DEVIATION_REFINEMENT_STEPS`] steps; assumes one peak in the bracket).
+fn golden_section_max(f: &impl Fn(f64) -> f64, mut left: f64, mut right: f64) -> f64 {
     let ratio = 0.5 * (5f64.sqrt() - 1.0);
-    let (mut left, mut right) = ((best.0 - step).max(lo), (best.0 + step).min(hi));
     let mut inner_left = right - ratio * (right - left);
     let mut inner_right = left + ratio * (right - left);
-    let (mut gap_left, mut gap_right) = (gap(inner_left), gap(inner_right));
+    let (mut f_left, mut f_right) = (f(inner_left), f(inner_right));
     for _ in 0..DEVIATION_REFINEMENT_STEPS {
-        if gap_left > gap_right {
+        if f_left > f_right {
             right = inner_right;
             inner_right = inner_left;
-            gap_right = gap_left;
+            f_right = f_left;
             inner_left = right - ratio * (right - left);
-            gap_left = gap(inner_left);
+            f_left = f(inner_left);
         } else {
             left = inner_left;
             inner_left = inner_right;
-            gap_left = gap_right;
+            f_left = f_right;
             inner_right = left + ratio * (right - left);
-            gap_right = gap(inner_right);
+            f_right = f(inner_right);
         }
     }
-    best.1.max(gap_left).max(gap_right)
+    f_left.max(f_right)
 }
