@@ -1,4 +1,9 @@
 //! knotshape: B-spline/NURBS evaluation and knot-pair shape modification, with an HTTP edge.
 #![cfg_attr(test, allow(clippy::unwrap_used))]
 
+pub mod config;
+pub mod http;
 pub mod spline;
+pub mod telemetry;
+
+pub use http::{app, app_with_readiness, openapi, openapi_json};
