@@ -3,6 +3,7 @@
 
 pub mod config;
 pub mod http;
+pub mod shape;
 pub mod spline;
 pub mod telemetry;
 
