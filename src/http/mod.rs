@@ -134,10 +134,13 @@ fn cors_layer(origins: &[String]) -> Option<CorsLayer> {
 
 /// The OpenAPI document, generated from the routes and types.
 pub fn openapi() -> OpenApiDocument {
-    OpenApiRouter::<AppState>::with_openapi(ApiDoc::openapi())
+    let mut document = OpenApiRouter::<AppState>::with_openapi(ApiDoc::openapi())
         .merge(v1_routes())
         .merge(ops_routes())
-        .into_openapi()
+        .into_openapi();
+    // After the merge, so that the paths exist.
+    SecurityAndCommonErrors.modify(&mut document);
+    document
 }
 
 /// The OpenAPI document as pretty JSON with a final newline (the form of
@@ -166,7 +169,6 @@ pub fn openapi_json() -> String {
         (name = "operations", description = "Probes, metrics and this document; never need the API key"),
     ),
     components(schemas(Problem, FieldError)),
-    modifiers(&SecurityAndCommonErrors),
 )]
 struct ApiDoc;
 

@@ -4,7 +4,7 @@
 use serde_json::{Value, json};
 
 use crate::helpers::{expect_problem, spawn_app};
-use crate::reference::cubic_2d;
+use crate::reference::{Lcg, cubic_2d};
 
 fn curve() -> Value {
     cubic_2d().to_json(false)
@@ -329,4 +329,114 @@ async fn spawn_app_limited() -> crate::helpers::TestApp {
         config.max_derivative_order = 8;
     })
     .await
+}
+
+/// A number for the robustness test: mostly ordinary, sometimes extreme.
+fn rough_number(rng: &mut Lcg) -> f64 {
+    const EXTREMES: [f64; 7] = [1e300, -1e300, 1e-300, 0.0, 1e308, -1e308, 5e-324];
+    if rng.unit() < 0.05 {
+        EXTREMES[(rng.unit() * 7.0) as usize % 7]
+    } else {
+        rng.between(-10.0, 10.0)
+    }
+}
+
+/// A random, often degenerate, curve object: coincident or collinear points, repeated or
+/// unclamped knots, extreme weights, either knot convention.
+fn rough_curve(rng: &mut Lcg) -> Value {
+    let degree = [3, 3, 3, 1, 2, 4][(rng.unit() * 6.0) as usize % 6];
+    let count = degree + 1 + (rng.unit() * 6.0) as usize;
+    let dimension = if rng.unit() < 0.3 { 3 } else { 2 };
+    let mut control_points: Vec<Vec<f64>> = (0..count)
+        .map(|_| (0..dimension).map(|_| rough_number(rng)).collect())
+        .collect();
+    if rng.unit() < 0.2 {
+        control_points = vec![control_points[0].clone(); count];
+    } else if rng.unit() < 0.2 {
+        control_points = (0..count)
+            .map(|i| (1..=dimension).map(|c| (i * c) as f64).collect())
+            .collect();
+    }
+    let mut knots: Vec<f64> = vec![0.0; degree + 1];
+    let mut inner: Vec<f64> = (0..count - degree - 1)
+        .map(|_| [0.0, 0.25, 0.5, 0.5, 0.75, rng.unit()][(rng.unit() * 6.0) as usize % 6])
+        .collect();
+    inner.sort_by(f64::total_cmp);
+    knots.extend(inner);
+    knots.extend(vec![1.0; degree + 1]);
+    if rng.unit() < 0.3 {
+        knots = (0..count + degree + 1)
+            .map(|_| rng.between(-1.0, 2.0))
+            .collect();
+        knots.sort_by(f64::total_cmp);
+    }
+    if rng.unit() < 0.3 {
+        knots = knots[1..knots.len() - 1].to_vec();
+    }
+    let mut curve = json!({"degree": degree, "control_points": control_points, "knots": knots});
+    if rng.unit() < 0.3 {
+        let weights: Vec<f64> = (0..count)
+            .map(|_| [rng.between(0.01, 5.0), 1e-300, 1e300][(rng.unit() * 3.0) as usize % 3])
+            .collect();
+        curve["weights"] = json!(weights);
+    }
+    curve
+}
+
+#[tokio::test]
+async fn random_and_degenerate_requests_never_give_a_server_error() {
+    let app = spawn_app().await;
+    let mut rng = Lcg(4242);
+    for _ in 0..60 {
+        let curve = rough_curve(&mut rng);
+        let dimension = curve["control_points"][0].as_array().unwrap().len();
+        let t = [0.0, 1.0, 0.5, 0.25, rng.unit(), rng.between(-1.0, 2.0)]
+            [(rng.unit() * 6.0) as usize % 6];
+        let target: Vec<f64> = (0..dimension).map(|_| rough_number(&mut rng)).collect();
+        let tolerance = [1e-3, 1e-9, 0.5][(rng.unit() * 3.0) as usize % 3];
+        let samples = 2 + (rng.unit() * 40.0) as usize;
+        let order = (rng.unit() * 8.0) as usize;
+        let knot_index = (rng.unit() * 12.0) as usize;
+        let keep_domain = rng.unit() < 0.7;
+        let other = rng.unit();
+        let requests = [
+            (
+                "/v1/curves/evaluate",
+                json!({"curve": curve, "samples": samples, "derivatives": order}),
+            ),
+            (
+                "/v1/curves/evaluate",
+                json!({"curve": curve, "parameters": [t, other], "derivatives": 2}),
+            ),
+            (
+                "/v1/curves/envelope",
+                json!({"curve": curve, "knot_index": knot_index}),
+            ),
+            (
+                "/v1/shape/solve",
+                json!({"curve": curve, "parameter": t, "target": target, "keep_domain": keep_domain}),
+            ),
+            (
+                "/v1/shape/membership",
+                json!({"curve": curve, "parameter": t, "target": target}),
+            ),
+            (
+                "/v1/shape/regions",
+                json!({"curve": curve, "parameter": t, "tolerance": tolerance}),
+            ),
+        ];
+        for (path, body) in &requests {
+            let response = app.post(path, body).await;
+            let status = response.status().as_u16();
+            let text = response.text().await.unwrap();
+            assert!(
+                status == 200 || status == 422,
+                "{status} from {path} {body}: {text}"
+            );
+            assert!(
+                !text.contains("null"),
+                "a non-finite number from {path} {body}: {text}"
+            );
+        }
+    }
 }

@@ -182,3 +182,38 @@ async fn cors_is_off_by_default_and_follows_the_allowlist() {
         .unwrap();
     assert!(other.headers().get("access-control-allow-origin").is_none());
 }
+
+/// Runs the compiled binary with `args` and `KNOTSHAPE_LISTEN`, returning exit success and stdout.
+async fn run_binary(args: &'static [&'static str], listen: String) -> (bool, String) {
+    tokio::task::spawn_blocking(move || {
+        let output = std::process::Command::new(env!("CARGO_BIN_EXE_knotshape"))
+            .args(args)
+            .env("KNOTSHAPE_LISTEN", listen)
+            .output()
+            .expect("run the knotshape binary");
+        (
+            output.status.success(),
+            String::from_utf8_lossy(&output.stdout).into_owned(),
+        )
+    })
+    .await
+    .unwrap()
+}
+
+#[tokio::test]
+async fn the_binary_probes_health_and_prints_the_document() {
+    let app = spawn_app().await;
+    let port = app.socket.port();
+    let (healthy, _) = run_binary(&["healthcheck"], format!("127.0.0.1:{port}")).await;
+    assert!(healthy, "healthcheck against a running server exits 0");
+    let (healthy, _) = run_binary(&["healthcheck"], format!("0.0.0.0:{port}")).await;
+    assert!(healthy, "0.0.0.0 is probed on 127.0.0.1");
+    let closed = std::net::TcpListener::bind("127.0.0.1:0").unwrap();
+    let closed_port = closed.local_addr().unwrap().port();
+    drop(closed);
+    let (healthy, _) = run_binary(&["healthcheck"], format!("127.0.0.1:{closed_port}")).await;
+    assert!(!healthy, "healthcheck with nothing listening exits 1");
+    let (printed, document) = run_binary(&["openapi"], "127.0.0.1:0".to_owned()).await;
+    assert!(printed);
+    assert_eq!(document, knotshape::openapi_json());
+}

@@ -37,6 +37,7 @@ const POLYGON_BUDGET_ROUNDS: usize = 4;
 /// Which knot next to `t` may move to `t`.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize, ToSchema)]
 #[serde(rename_all = "lowercase")]
+#[schema(example = json!("both"))]
 pub enum SideRequest {
     /// The knot right of `t`, `u_{m+1}`.
     Right,
@@ -60,6 +61,7 @@ impl From<SideRequest> for SideChoice {
 /// The side of a candidate.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, ToSchema)]
 #[serde(rename_all = "lowercase")]
+#[schema(example = json!("left"))]
 pub enum CandidateSide {
     /// The knot right of `t` moved to `t`.
     Right,
@@ -79,6 +81,7 @@ impl From<Side> for CandidateSide {
 /// A region `Ω_r`: the targets one knot pair reaches.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, ToSchema)]
 #[serde(rename_all = "lowercase")]
+#[schema(example = json!("omega2"))]
 pub enum Region {
     /// `(a, b) = (v_{j-1}, v_j)` move (paper §3.1).
     Omega1,
@@ -206,6 +209,8 @@ pub struct FrameBody {
 
 /// One side's candidate: the knot that moves to `t`, its span and control triangle.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
+#[schema(example = json!({"side": "left", "applicable": true, "span": 4, "moved_knot": 5,
+              "triangle": [[3.0, 4.0], [5.0, 3.5], [6.0, 1.0]], "frame": {"x": 0.18, "y": 0.106667}}))]
 pub struct CandidateBody {
     /// Which knot moves to `t`.
     pub side: CandidateSide,
@@ -245,6 +250,8 @@ pub struct RegionMembershipBody {
 
 /// A candidate with the membership of each requested region.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
+#[schema(example = json!({"side": "left", "applicable": true, "span": 4, "moved_knot": 5,
+              "triangle": [[3.0, 4.0], [5.0, 3.5], [6.0, 1.0]], "frame": {"x": 0.18, "y": 0.106667}, "regions": [{"region": "omega2", "knots": [4, 6], "contains": true}, {"region": "omega4", "knots": [3, 6], "contains": false}]}))]
 pub struct MembershipCandidate {
     /// The candidate.
     #[serde(flatten)]
@@ -255,6 +262,8 @@ pub struct MembershipCandidate {
 
 /// Which regions hold the target.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
+#[schema(example = json!({"reachable": true, "candidates": [{"side": "left", "applicable": true, "span": 4, "moved_knot": 5,
+              "triangle": [[3.0, 4.0], [5.0, 3.5], [6.0, 1.0]], "frame": {"x": 0.18, "y": 0.106667}, "regions": [{"region": "omega2", "knots": [4, 6], "contains": true}, {"region": "omega4", "knots": [3, 6], "contains": false}]}]}))]
 pub struct MembershipResponse {
     /// Whether any region of any candidate holds the target.
     pub reachable: bool,
@@ -264,6 +273,9 @@ pub struct MembershipResponse {
 
 /// One way to move `s(t)` onto the target.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
+#[schema(example = json!({"region": "omega2", "side": "left", "span": 4, "moved_knot": 5, "changed_knots": [4, 5, 6],
+     "knots": [0, 0, 0, 0, 0.3, 0.42, 0.6, 0.75, 1, 1, 1, 1], "point": [4.746667, 3.323333],
+     "residual": 3.2e-15, "affected_domain": [0, 1], "max_deviation": 1.030559}))]
 pub struct SolutionBody {
     /// The region (knot pair) that reaches the target.
     pub region: Region,
@@ -289,6 +301,10 @@ pub struct SolutionBody {
 
 /// New knot vectors that move `s(t)` to the target.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
+#[schema(example = json!({"reachable": true, "candidates": [{"side": "left", "applicable": true, "span": 4, "moved_knot": 5,
+              "triangle": [[3.0, 4.0], [5.0, 3.5], [6.0, 1.0]], "frame": {"x": 0.18, "y": 0.106667}, "regions": [{"region": "omega2", "knots": [4, 6], "contains": true}, {"region": "omega4", "knots": [3, 6], "contains": false}]}], "solutions": [{"region": "omega2", "side": "left", "span": 4, "moved_knot": 5, "changed_knots": [4, 5, 6],
+     "knots": [0, 0, 0, 0, 0.3, 0.42, 0.6, 0.75, 1, 1, 1, 1], "point": [4.746667, 3.323333],
+     "residual": 3.2e-15, "affected_domain": [0, 1], "max_deviation": 1.030559}]}))]
 pub struct SolveResponse {
     /// Whether any solution exists (`false` is a normal answer, not an error).
     pub reachable: bool,
@@ -300,6 +316,10 @@ pub struct SolveResponse {
 
 /// One region's boundary.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
+#[schema(example = json!({"region": "omega2", "knots": [4, 6],
+     "polygon": [[5.56, 2.1], [4.9264, 2.8128], [4.12, 3.72], [5.0, 3.5], [5.56, 2.1]],
+     "polygon_frame": [[0.0, 0.56], [0.1936, 0.3136], [0.44, 0.0], [0.0, 0.0], [0.0, 0.56]],
+     "tolerance_met": true}))]
 pub struct RegionPolygonBody {
     /// The region.
     pub region: Region,
@@ -316,6 +336,11 @@ pub struct RegionPolygonBody {
 
 /// A candidate with its regions' boundaries.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
+#[schema(example = json!({"side": "left", "applicable": true, "span": 4, "moved_knot": 5,
+              "triangle": [[3.0, 4.0], [5.0, 3.5], [6.0, 1.0]], "regions": [{"region": "omega2", "knots": [4, 6],
+     "polygon": [[5.56, 2.1], [4.9264, 2.8128], [4.12, 3.72], [5.0, 3.5], [5.56, 2.1]],
+     "polygon_frame": [[0.0, 0.56], [0.1936, 0.3136], [0.44, 0.0], [0.0, 0.0], [0.0, 0.56]],
+     "tolerance_met": true}]}))]
 pub struct RegionsCandidate {
     /// The candidate (no target, so no frame).
     #[serde(flatten)]
@@ -326,6 +351,11 @@ pub struct RegionsCandidate {
 
 /// The regions' boundary polygons, for drawing (membership is decided by solving).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
+#[schema(example = json!({"candidates": [{"side": "left", "applicable": true, "span": 4, "moved_knot": 5,
+              "triangle": [[3.0, 4.0], [5.0, 3.5], [6.0, 1.0]], "regions": [{"region": "omega2", "knots": [4, 6],
+     "polygon": [[5.56, 2.1], [4.9264, 2.8128], [4.12, 3.72], [5.0, 3.5], [5.56, 2.1]],
+     "polygon_frame": [[0.0, 0.56], [0.1936, 0.3136], [0.44, 0.0], [0.0, 0.0], [0.0, 0.56]],
+     "tolerance_met": true}]}]}))]
 pub struct RegionsResponse {
     /// One entry per requested side.
     pub candidates: Vec<RegionsCandidate>,
