@@ -84,24 +84,13 @@ async fn the_served_document_is_the_generated_one() {
     ] {
         assert!(served["paths"][path].is_object(), "{path} documented");
     }
-    let schemas = &served["components"]["schemas"];
-    for schema in [
-        "CurveBody",
-        "EvaluateRequest",
-        "ShapeRequest",
-        "SolveResponse",
-        "Problem",
-    ] {
+    // Every schema carries a description and an example.
+    for (name, schema) in served["components"]["schemas"].as_object().unwrap() {
         assert!(
-            schemas[schema]["description"].is_string() || schemas[schema]["properties"].is_object(),
-            "{schema}"
+            schema["description"].is_string(),
+            "{name} has a description"
         );
-        assert!(
-            schemas[schema]["example"].is_object()
-                || schemas[schema]["examples"].is_array()
-                || schema.ends_with("Response"),
-            "{schema} has an example"
-        );
+        assert!(!schema["example"].is_null(), "{name} has an example");
     }
     assert_eq!(
         served["components"]["securitySchemes"]["api_key"]["scheme"],
