@@ -20,7 +20,8 @@ pub struct ApiJson<T>(pub T);
 impl<T: Serialize> IntoResponse for ApiJson<T> {
     fn into_response(self) -> Response {
         match serde_json::to_value(&self.0) {
-            Ok(value) if !holds_null(&value) => axum::Json(value).into_response(),
+            // Serialized again from the typed value, so fields keep their declared order.
+            Ok(value) if !holds_null(&value) => axum::Json(self.0).into_response(),
             Ok(_) => ApiError::invalid(
                 "/curve",
                 "the result is not finite: the curve's coordinates or weights are too extreme \

@@ -3,6 +3,7 @@
 //! 404/405 fallbacks.
 
 use std::any::Any;
+use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use axum::body::Body;
@@ -11,6 +12,7 @@ use axum::http::{HeaderValue, Method, StatusCode, Uri, header};
 use axum::middleware::Next;
 use axum::response::{IntoResponse, Response};
 use subtle::ConstantTimeEq;
+use tokio::sync::OwnedSemaphorePermit;
 use tower_http::catch_panic::ResponseForPanic;
 use tracing::Span;
 
@@ -49,20 +51,30 @@ fn bearer_token(value: &str) -> Option<&str> {
         .filter(|token| !token.is_empty())
 }
 
+/// One `/v1` request's share of the concurrency limit; released when the last clone drops
+/// (the request's and, for computing handlers, the blocking work's).
+#[derive(Debug, Clone)]
+pub struct AdmissionPermit {
+    _permit: Arc<OwnedSemaphorePermit>,
+}
+
 /// Admits a `/v1` request only while the service is ready and below its concurrency limit;
 /// otherwise answers 503 with `Retry-After` at once instead of queueing.
 pub async fn admit(
     State(state): State<AppState>,
-    request: Request,
+    mut request: Request,
     next: Next,
 ) -> Result<Response, ApiError> {
     let retry_after_secs = state.retry_after_secs;
     if !state.readiness.is_ready() {
         return Err(ApiError::ShuttingDown { retry_after_secs });
     }
-    let Ok(_permit) = state.admission.clone().try_acquire_owned() else {
+    let Ok(permit) = state.admission.clone().try_acquire_owned() else {
         return Err(ApiError::Overloaded { retry_after_secs });
     };
+    request.extensions_mut().insert(AdmissionPermit {
+        _permit: Arc::new(permit),
+    });
     Ok(next.run(request).await)
 }
 

@@ -1,5 +1,6 @@
 //! `POST /v1/curves/evaluate` and `POST /v1/curves/envelope`.
 
+use axum::Extension;
 use axum::extract::State;
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
@@ -9,6 +10,7 @@ use crate::config::Limits;
 use crate::http::curve::{CurveBody, point_to_wire};
 use crate::http::error::{ApiError, FieldError, Problem};
 use crate::http::extract::ApiJson;
+use crate::http::middleware::AdmissionPermit;
 use crate::http::pointer::JsonPointer;
 use crate::http::state::AppState;
 use crate::spline::{BatchEvaluator, Curve, CurveLimits, EnvelopeError, Point};
@@ -81,12 +83,15 @@ pub struct EvaluateResponse {
 )]
 pub async fn evaluate(
     State(state): State<AppState>,
+    admission: Option<Extension<AdmissionPermit>>,
     ApiJson(request): ApiJson<EvaluateRequest>,
 ) -> Result<ApiJson<EvaluateResponse>, ApiError> {
     let (limits, curve_limits) = (state.limits, state.curve_limits);
-    compute(move || evaluate_request(&request, &limits, &curve_limits))
-        .await
-        .map(ApiJson)
+    compute(admission, move || {
+        evaluate_request(&request, &limits, &curve_limits)
+    })
+    .await
+    .map(ApiJson)
 }
 
 /// Where the parameters come from, once validated.
@@ -301,10 +306,11 @@ pub struct EnvelopeResponse {
 )]
 pub async fn envelope(
     State(state): State<AppState>,
+    admission: Option<Extension<AdmissionPermit>>,
     ApiJson(request): ApiJson<EnvelopeRequest>,
 ) -> Result<ApiJson<EnvelopeResponse>, ApiError> {
     let curve_limits = state.curve_limits;
-    compute(move || envelope_request(&request, &curve_limits))
+    compute(admission, move || envelope_request(&request, &curve_limits))
         .await
         .map(ApiJson)
 }

@@ -2,6 +2,7 @@
 //! method (MATH.md §3–5) over the wire. Knot indices and vectors are converted from the
 //! core's full convention to the caller's.
 
+use axum::Extension;
 use axum::extract::State;
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
@@ -11,6 +12,7 @@ use crate::config::Limits;
 use crate::http::curve::{CurveBody, point_to_wire};
 use crate::http::error::{ApiError, FieldError, Problem};
 use crate::http::extract::ApiJson;
+use crate::http::middleware::AdmissionPermit;
 use crate::http::pointer::JsonPointer;
 use crate::http::state::AppState;
 use crate::shape::{
@@ -379,10 +381,11 @@ pub struct RegionsResponse {
 )]
 pub async fn membership(
     State(state): State<AppState>,
+    admission: Option<Extension<AdmissionPermit>>,
     ApiJson(request): ApiJson<ShapeRequest>,
 ) -> Result<ApiJson<MembershipResponse>, ApiError> {
     let curve_limits = state.curve_limits;
-    compute(move || {
+    compute(admission, move || {
         let parsed = ParsedShape::parse(&request.curve, &request.regions, &curve_limits)?;
         let query = parsed.query(request.parameter, request.side, request.keep_domain);
         let outcome =
@@ -415,10 +418,11 @@ pub async fn membership(
 )]
 pub async fn solve(
     State(state): State<AppState>,
+    admission: Option<Extension<AdmissionPermit>>,
     ApiJson(request): ApiJson<ShapeRequest>,
 ) -> Result<ApiJson<SolveResponse>, ApiError> {
     let curve_limits = state.curve_limits;
-    compute(move || {
+    compute(admission, move || {
         let parsed = ParsedShape::parse(&request.curve, &request.regions, &curve_limits)?;
         let query = parsed.query(request.parameter, request.side, request.keep_domain);
         let outcome = shape::solve(
@@ -479,12 +483,15 @@ pub async fn solve(
 )]
 pub async fn regions(
     State(state): State<AppState>,
+    admission: Option<Extension<AdmissionPermit>>,
     ApiJson(request): ApiJson<RegionsRequest>,
 ) -> Result<ApiJson<RegionsResponse>, ApiError> {
     let (limits, curve_limits) = (state.limits, state.curve_limits);
-    compute(move || regions_request(&request, &limits, &curve_limits))
-        .await
-        .map(ApiJson)
+    compute(admission, move || {
+        regions_request(&request, &limits, &curve_limits)
+    })
+    .await
+    .map(ApiJson)
 }
 
 fn regions_request(
