@@ -1,5 +1,7 @@
 //! Logging setup: a `tracing` subscriber writing human-readable or JSON lines.
 
+use std::io::IsTerminal;
+
 use tracing_subscriber::EnvFilter;
 use tracing_subscriber::fmt::MakeWriter;
 
@@ -20,7 +22,8 @@ pub enum TelemetryError {
 }
 
 /// Installs the global subscriber: `filter` in `tracing` syntax (e.g. `info`), lines in `format`
-/// written to `sink` (stdout in the binary, a sink of choice in tests).
+/// written to `sink` (stdout in the binary, a sink of choice in tests). Human lines are
+/// coloured only when stdout is a terminal.
 pub fn init_subscriber<W>(format: LogFormat, filter: &str, sink: W) -> Result<(), TelemetryError>
 where
     W: for<'writer> MakeWriter<'writer> + Send + Sync + 'static,
@@ -32,6 +35,7 @@ where
         })?;
     let builder = tracing_subscriber::fmt()
         .with_env_filter(env_filter)
+        .with_ansi(std::io::stdout().is_terminal())
         .with_writer(sink);
     let installed = match format {
         LogFormat::Human => builder.try_init(),
