@@ -10,7 +10,7 @@ use crate::reference::{cubic_2d, distance};
 
 #[tokio::test]
 async fn shutdown_drains_and_lets_the_request_in_flight_finish() {
-    let mut app = spawn_app_with(|config| config.drain_delay_ms = 300).await;
+    let mut app = spawn_app_with(|config| config.drain_delay_ms = 1_000).await;
     let curve = cubic_2d();
     let body = json!({"curve": curve.to_json(false), "parameters": [0.0, 0.42, 1.0]});
     let in_flight = app.start_slow_post("/v1/curves/evaluate", &body).await;
@@ -31,12 +31,16 @@ async fn shutdown_drains_and_lets_the_request_in_flight_finish() {
     assert!(refused.headers().contains_key("retry-after"));
     expect_problem(refused, 503, None).await;
 
-    // After the drain delay the listener is closed; the request in flight still completes.
-    tokio::time::sleep(Duration::from_millis(500)).await;
-    assert!(
-        tokio::net::TcpStream::connect(app.socket).await.is_err(),
-        "the listener is closed"
-    );
+    // After the drain delay the listener closes; the request in flight still completes.
+    let mut listener_closed = false;
+    for _ in 0..250 {
+        if tokio::net::TcpStream::connect(app.socket).await.is_err() {
+            listener_closed = true;
+            break;
+        }
+        tokio::time::sleep(Duration::from_millis(20)).await;
+    }
+    assert!(listener_closed, "the listener closes after the drain delay");
     let response = in_flight.finish().await;
     assert_eq!(response.status, 200, "{}", response.body);
     let got = points(&response.body["points"]);
