@@ -1,0 +1,38 @@
+//! Request handlers, one module per resource group.
+
+pub mod curves;
+pub mod ops;
+pub mod shape;
+
+use axum::Extension;
+
+use super::error::ApiError;
+use super::middleware::AdmissionPermit;
+
+/// Runs CPU-bound request work on the blocking pool, so a slow request never stalls the
+/// runtime and the request timeout can answer while it runs. The request's admission permit
+/// moves along, so work that outlives a timed-out request still counts against the
+/// concurrency limit. A panic in `work` is resumed here, where the panic-catching layer
+/// answers it as a 500 problem and logs it.
+pub async fn compute<T, F>(
+    admission: Option<Extension<AdmissionPermit>>,
+    work: F,
+) -> Result<T, ApiError>
+where
+    T: Send + 'static,
+    F: FnOnce() -> Result<T, ApiError> + Send + 'static,
+{
+    let computation = move || {
+        let _admission = admission;
+        work()
+    };
+    match tokio::task::spawn_blocking(computation).await {
+        Ok(result) => result,
+        Err(join_error) => match join_error.try_into_panic() {
+            Ok(payload) => std::panic::resume_unwind(payload),
+            Err(_) => Err(ApiError::Internal(
+                "the computation was cancelled".to_owned(),
+            )),
+        },
+    }
+}
