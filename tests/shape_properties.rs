@@ -22,12 +22,18 @@ const BRUTE_FORCE_SAMPLES: usize = 20_000;
 /// relative: both refine to far better than that near the peak.
 const DEVIATION_TOLERANCE: f64 = 1e-6;
 
-/// Cases per property: `PROPTEST_CASES` when set (for long hunts), else 96.
-fn cases() -> u32 {
-    std::env::var("PROPTEST_CASES")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(96)
+/// Cases per property: `PROPTEST_CASES` when set (for long hunts), else 96. The random seed
+/// is fixed (so CI is repeatable) unless `PROPTEST_RNG_SEED` names another.
+fn config() -> ProptestConfig {
+    let env = |name: &str| std::env::var(name).ok().and_then(|v| v.parse().ok());
+    ProptestConfig {
+        cases: env("PROPTEST_CASES").map_or(96, |v: u64| v as u32),
+        rng_seed: proptest::test_runner::RngSeed::Fixed(
+            env("PROPTEST_RNG_SEED").unwrap_or(0x6b6e_6f74),
+        ),
+        failure_persistence: None,
+        ..ProptestConfig::default()
+    }
 }
 
 /// A small deterministic generator (SplitMix64), seeded by proptest.
@@ -255,7 +261,7 @@ fn check_solution(curve: &Curve, t: f64, target: Point, solution: &Solution) -> 
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(cases()))]
+    #![proptest_config(config())]
 
     /// Targets made by moving one pair's knots: that pair reports a solution, and every
     /// solution of every pair and side lands on the target and changes only what it says.

@@ -25,7 +25,8 @@ pub struct PolygonOptions {
     /// Largest distance, in curve coordinates, between the true boundary and the polygon;
     /// `None`: [`DEFAULT_RELATIVE_TOLERANCE`] times the triangle's longest edge.
     pub tolerance: Option<f64>,
-    /// Most vertices per polygon; refinement stops there (then `tolerance_met` is false).
+    /// Most vertices per polygon, the closing repeat included (at least 5 are always allowed:
+    /// a rectangle's corners); refinement stops there (then `tolerance_met` is false).
     pub max_vertices: usize,
 }
 
@@ -152,7 +153,8 @@ struct BoundarySampler<'a> {
     local: &'a LocalKnots,
     pair: KnotPair,
     tolerance: f64,
-    max_vertices: usize,
+    /// Bisections still allowed: each adds one vertex.
+    splits_left: usize,
     frame: Vec<[f64; 2]>,
     points: Vec<Point>,
     tolerance_met: bool,
@@ -186,7 +188,8 @@ impl BoundarySampler<'_> {
         let middle = [0.5 * (from[0] + to[0]), 0.5 * (from[1] + to[1])];
         let image = self.image(middle);
         let too_far = distance_to_segment(image.1, start, end.1) > self.tolerance;
-        if too_far && depth < MAX_REFINEMENT_DEPTH && self.frame.len() + 2 <= self.max_vertices {
+        if too_far && depth < MAX_REFINEMENT_DEPTH && self.splits_left > 0 {
+            self.splits_left -= 1;
             self.refine(from, middle, start, image, depth + 1);
             self.refine(middle, to, image.1, end, depth + 1);
         } else {
@@ -208,13 +211,17 @@ fn region_polygon(
     max_vertices: usize,
 ) -> RegionPolygon {
     let corners = domain_corners(pair, local);
+    // The polygon has 1 + (number of pieces) vertices: the first corner, then one per piece
+    // (the last piece ends on the first corner again). Bisecting a piece adds one.
+    let max_vertices = max_vertices.max(corners.len() + 1);
+    let pieces_per_edge = INITIAL_PIECES_PER_EDGE.min((max_vertices - 1) / corners.len());
     let mut sampler = BoundarySampler {
         curve,
         span,
         local,
         pair,
         tolerance,
-        max_vertices: max_vertices.max(corners.len() * INITIAL_PIECES_PER_EDGE + 1),
+        splits_left: max_vertices - 1 - corners.len() * pieces_per_edge,
         frame: Vec::new(),
         points: Vec::new(),
         tolerance_met: true,
@@ -223,15 +230,15 @@ fn region_polygon(
     sampler.push(first);
     for (i, &from) in corners.iter().enumerate() {
         let to = corners[(i + 1) % corners.len()];
-        for piece in 0..INITIAL_PIECES_PER_EDGE {
+        for piece in 0..pieces_per_edge {
             let at = |s: f64| {
                 [
                     from[0] + s * (to[0] - from[0]),
                     from[1] + s * (to[1] - from[1]),
                 ]
             };
-            let s0 = piece as f64 / INITIAL_PIECES_PER_EDGE as f64;
-            let s1 = (piece + 1) as f64 / INITIAL_PIECES_PER_EDGE as f64;
+            let s0 = piece as f64 / pieces_per_edge as f64;
+            let s1 = (piece + 1) as f64 / pieces_per_edge as f64;
             let start = *sampler.points.last().unwrap_or(&first.1);
             let end = sampler.image(at(s1));
             sampler.refine(at(s0), at(s1), start, end, 0);

@@ -4,11 +4,11 @@
 use super::candidate::{Candidate, Side, SideChoice, candidate, triangle_size};
 use super::pairs::{KnotPair, LocalKnots, solve_pair};
 use crate::spline::vector::{Point, distance};
-use crate::spline::{Curve, Dimension, EvalError};
+use crate::spline::{Curve, Dimension};
 
 /// Uniform samples per knot interval (of the old and new knots together) in the deviation
 /// estimate; the best one is then refined by golden-section search.
-pub const DEVIATION_SAMPLES_PER_PIECE: usize = 8;
+pub const DEVIATION_SAMPLES_PER_PIECE: usize = 16;
 
 /// Golden-section steps that refine the deviation's best sample (each shrinks the bracket by
 /// 0.618).
@@ -20,9 +20,12 @@ pub enum ShapeError {
     /// The method is for cubic curves only.
     #[error("the knot-pair method needs a cubic curve (degree 3), not degree {degree}")]
     NotCubic { degree: usize },
-    /// The picked parameter is not finite or not in the domain.
-    #[error(transparent)]
-    Parameter(EvalError),
+    /// The picked parameter is not a finite number.
+    #[error("the parameter is not a finite number")]
+    NonFiniteParameter,
+    /// The picked parameter lies outside the curve's domain.
+    #[error("parameter {value} lies outside the domain [{}, {}]", domain.0, domain.1)]
+    ParameterOutsideDomain { value: f64, domain: (f64, f64) },
     /// The target has the wrong number of coordinates.
     #[error("the target has {found} coordinates; the curve's control points have {expected}")]
     TargetDimension { expected: usize, found: usize },
@@ -49,7 +52,9 @@ impl ShapeError {
     pub fn field(&self) -> ShapeField {
         match *self {
             ShapeError::NotCubic { .. } => ShapeField::Degree,
-            ShapeError::Parameter(_) => ShapeField::Parameter,
+            ShapeError::NonFiniteParameter | ShapeError::ParameterOutsideDomain { .. } => {
+                ShapeField::Parameter
+            }
             ShapeError::TargetDimension { .. } => ShapeField::Target,
             ShapeError::NonFiniteTarget { coordinate } => ShapeField::TargetCoordinate(coordinate),
         }
@@ -93,16 +98,13 @@ impl<'a> ShapeQuery<'a> {
         }
         let t = self.parameter;
         if !t.is_finite() {
-            return Err(ShapeError::Parameter(EvalError::NonFiniteParameter {
-                index: 0,
-            }));
+            return Err(ShapeError::NonFiniteParameter);
         }
         if !self.curve.contains_parameter(t) {
-            return Err(ShapeError::Parameter(EvalError::OutsideDomain {
-                index: 0,
+            return Err(ShapeError::ParameterOutsideDomain {
                 value: t,
                 domain: self.curve.domain(),
-            }));
+            });
         }
         Ok(())
     }

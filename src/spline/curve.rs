@@ -129,7 +129,7 @@ pub enum CurveError {
     #[error("knots must be non-decreasing: knot {index} is smaller than knot {}", index - 1)]
     DecreasingKnot { index: usize },
     #[error(
-        "knot value at index {index} is repeated {multiplicity} times; at most degree + 1 = {max} allowed"
+        "knot value at index {index} is repeated {multiplicity} times; at most {max} allowed (degree + 1, or degree + 2 at the ends of a full vector)"
     )]
     KnotMultiplicityTooHigh {
         index: usize,
@@ -199,7 +199,8 @@ impl Curve {
     /// `limits.max_control_points` control points, all with 2 or all with 3 finite coordinates;
     /// one finite weight `> 0` per control point when weights are given; `n + p + 2` (full) or
     /// `n + p` (trimmed) finite, non-decreasing knots, no value repeated more than `degree + 1`
-    /// times; a non-empty domain `u_p < u_{n+1}`.
+    /// times (`degree + 2` for a run holding the first or last value of a full vector, whose
+    /// end knots have no effect); a non-empty domain `u_p < u_{n+1}`.
     pub fn new(
         degree: usize,
         control_points: &[Vec<f64>],
@@ -289,7 +290,7 @@ impl Curve {
                 trimmed: full_len - 2,
             });
         };
-        check_knot_values(knots, degree)?;
+        check_knot_values(knots, degree, convention)?;
         let full = match convention {
             KnotConvention::Full => knots.to_vec(),
             KnotConvention::Trimmed => {
@@ -434,7 +435,16 @@ impl Curve {
 }
 
 /// Checks finiteness, monotonicity and multiplicity of the caller's knots (caller's indices).
-fn check_knot_values(knots: &[f64], degree: usize) -> Result<(), CurveError> {
+///
+/// A value may repeat at most `degree + 1` times, except that in the full convention a run
+/// holding the first or last value may repeat `degree + 2` times: `u_0` and `u_{n+p+1}` never
+/// influence the curve, and the envelope of a clamped curve has exactly such ends.
+fn check_knot_values(
+    knots: &[f64],
+    degree: usize,
+    convention: KnotConvention,
+) -> Result<(), CurveError> {
+    let end_allowance = usize::from(convention == KnotConvention::Full);
     let mut run_start = 0;
     for (index, &u) in knots.iter().enumerate() {
         if !u.is_finite() {
@@ -450,11 +460,13 @@ fn check_knot_values(knots: &[f64], degree: usize) -> Result<(), CurveError> {
             }
         }
         let multiplicity = index - run_start + 1;
-        if multiplicity > degree + 1 {
+        let touches_end = run_start == 0 || knots[index..].iter().all(|&v| v == u);
+        let max = degree + 1 + if touches_end { end_allowance } else { 0 };
+        if multiplicity > max {
             return Err(CurveError::KnotMultiplicityTooHigh {
                 index,
                 multiplicity,
-                max: degree + 1,
+                max,
             });
         }
     }

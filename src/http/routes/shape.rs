@@ -24,17 +24,8 @@ use crate::spline::{Curve, CurveLimits};
 /// The degree the knot-pair method works on.
 const CUBIC: usize = 3;
 
-/// Vertices the core's polygon sampler may add beyond its budget (its initial pieces, 8 per
-/// domain edge, and the pending halves of its bisection, up to its depth limit 30, each yield
-/// a vertex once the budget is spent). The edge asks for `limit - POLYGON_VERTEX_SLACK` and,
-/// should a polygon still exceed the limit, asks again with less.
-const POLYGON_VERTEX_SLACK: usize = 64;
-
 /// The smallest effective polygon vertex limit (smaller configured values act as this).
 pub const MIN_POLYGON_VERTEX_LIMIT: usize = 128;
-
-/// Rounds of asking the core for polygons within the vertex limit.
-const POLYGON_BUDGET_ROUNDS: usize = 4;
 
 /// Which knot next to `t` may move to `t`.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize, ToSchema)]
@@ -517,29 +508,14 @@ fn regions_request(
         (Err(other), _) => return Err(other),
     };
     let query = parsed.query(request.parameter, request.side, request.keep_domain);
-    let limit = limits.max_polygon_vertices.max(MIN_POLYGON_VERTEX_LIMIT);
-    let mut budget = limit - POLYGON_VERTEX_SLACK;
-    let mut candidates = Vec::new();
-    for _ in 0..POLYGON_BUDGET_ROUNDS {
-        candidates = shape::region_polygons(
-            &query,
-            PolygonOptions {
-                tolerance: request.tolerance,
-                max_vertices: budget,
-            },
-        )
-        .map_err(|error| shape_error(&error))?;
-        let largest = candidates
-            .iter()
-            .flat_map(|candidate| &candidate.regions)
-            .map(|region| region.polygon.len())
-            .max()
-            .unwrap_or(0);
-        if largest <= limit {
-            break;
-        }
-        budget = budget.saturating_sub(largest - limit).max(1);
-    }
+    let candidates = shape::region_polygons(
+        &query,
+        PolygonOptions {
+            tolerance: request.tolerance,
+            max_vertices: limits.max_polygon_vertices.max(MIN_POLYGON_VERTEX_LIMIT),
+        },
+    )
+    .map_err(|error| shape_error(&error))?;
     let curve = &parsed.curve;
     let dimension = curve.dimension();
     Ok(RegionsResponse {
@@ -647,17 +623,7 @@ fn shape_error(error: &ShapeError) -> ApiError {
         ShapeField::Target => JsonPointer::from("/target"),
         ShapeField::TargetCoordinate(index) => JsonPointer::from("/target").push(index),
     };
-    let detail = match error {
-        ShapeError::Parameter(crate::spline::EvalError::OutsideDomain {
-            value, domain, ..
-        }) => {
-            format!(
-                "parameter {value} lies outside the domain [{}, {}]",
-                domain.0, domain.1
-            )
-        }
-        other => other.to_string(),
-    };
+    let detail = error.to_string();
     ApiError::invalid(pointer, detail)
 }
 
