@@ -352,9 +352,10 @@ pub fn affected_domain(curve: &Curve, new_knots: &[f64], changed_knots: &[usize]
 /// Largest distance `|s_old(u) - s_new(u)|` for `u` in `interval` (outside it the two curves
 /// agree) and in both curves' domains.
 ///
-/// Between consecutive knots of the old and the new vector both curves are polynomial (or
-/// rational) pieces, so each piece gets [`DEVIATION_SAMPLES_PER_PIECE`] uniform samples, however
-/// short it is; every sampled local maximum within 10% of the best is then refined by
+/// Between consecutive knots of the old and the new vector both curves are single polynomial
+/// (or rational) pieces, evaluated in power form; each piece gets
+/// [`DEVIATION_SAMPLES_PER_PIECE`] uniform samples, however short it is, and every sampled
+/// local maximum within 10% of the best is then refined by
 /// golden-section search ([`DEVIATION_REFINEMENT_STEPS`] steps). An estimate from below
 /// (every value is a real distance), exact to the refinement when the peak's bump is sampled.
 pub fn max_deviation(curve: &Curve, new_knots: &[f64], interval: (f64, f64)) -> f64 {
@@ -366,12 +367,6 @@ pub fn max_deviation(curve: &Curve, new_knots: &[f64], interval: (f64, f64)) -> 
     if hi <= lo {
         return 0.0;
     }
-    let gap = |u: f64| {
-        distance(
-            curve.point_with_knots(old_knots, u),
-            curve.point_with_knots(new_knots, u),
-        )
-    };
     let mut breaks: Vec<f64> = old_knots
         .iter()
         .chain(new_knots)
@@ -381,23 +376,37 @@ pub fn max_deviation(curve: &Curve, new_knots: &[f64], interval: (f64, f64)) -> 
         .collect();
     breaks.sort_by(f64::total_cmp);
     breaks.dedup();
-    let mut samples = Vec::with_capacity(breaks.len() * DEVIATION_SAMPLES_PER_PIECE + 1);
-    samples.push(lo);
-    for piece in breaks.windows(2) {
-        let step = (piece[1] - piece[0]) / DEVIATION_SAMPLES_PER_PIECE as f64;
-        samples.extend((1..DEVIATION_SAMPLES_PER_PIECE).map(|i| piece[0] + step * i as f64));
-        samples.push(piece[1]);
-    }
-    let gaps: Vec<f64> = samples.iter().map(|&u| gap(u)).collect();
-    let best = gaps.iter().copied().fold(0.0, f64::max);
+    // Both curves are single polynomials (or rationals) on each piece: power form, Horner.
+    let pieces: Vec<_> = breaks
+        .windows(2)
+        .map(|piece| {
+            let old = curve.power_piece_with_knots(old_knots, piece[0]);
+            let new = curve.power_piece_with_knots(new_knots, piece[0]);
+            let step = (piece[1] - piece[0]) / DEVIATION_SAMPLES_PER_PIECE as f64;
+            (old, new, step)
+        })
+        .collect();
+    let gaps: Vec<[f64; DEVIATION_SAMPLES_PER_PIECE + 1]> = pieces
+        .iter()
+        .map(|(old, new, step)| {
+            std::array::from_fn(|i| {
+                distance(old.point(step * i as f64), new.point(step * i as f64))
+            })
+        })
+        .collect();
+    let best = gaps.iter().flatten().copied().fold(0.0, f64::max);
     // Refine every sampled local maximum that could beat the best sample.
     let mut refined = best;
-    for i in 0..gaps.len() {
-        let left = i.saturating_sub(1);
-        let right = (i + 1).min(gaps.len() - 1);
-        let local_max = gaps[i] >= gaps[left] && gaps[i] >= gaps[right];
-        if local_max && gaps[i] >= REFINE_FRACTION * best && right > left {
-            refined = refined.max(golden_section_max(&gap, samples[left], samples[right]));
+    for ((old, new, step), gaps) in pieces.iter().zip(&gaps) {
+        for i in 0..gaps.len() {
+            let left = i.saturating_sub(1);
+            let right = (i + 1).min(gaps.len() - 1);
+            let local_max = gaps[i] >= gaps[left] && gaps[i] >= gaps[right];
+            if local_max && gaps[i] >= REFINE_FRACTION * best && right > left {
+                let gap = |h: f64| distance(old.point(h), new.point(h));
+                let peak = golden_section_max(&gap, step * left as f64, step * right as f64);
+                refined = refined.max(peak);
+            }
         }
     }
     refined

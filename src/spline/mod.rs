@@ -9,6 +9,7 @@ mod curve;
 mod envelope;
 mod eval;
 mod other_knots;
+pub use other_knots::PowerPiece;
 pub mod vector;
 
 pub use basis::MAX_DEGREE;

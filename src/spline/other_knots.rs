@@ -2,7 +2,7 @@
 //!
 //! The shape solver proposes knot vectors and must evaluate them quickly and allocation-free.
 
-use super::basis::{CAP, basis_functions, find_span};
+use super::basis::{CAP, basis_derivatives, basis_functions, find_span};
 use super::curve::Curve;
 use super::vector::Point;
 
@@ -30,6 +30,68 @@ impl Curve {
             [acc[0] / acc[3], acc[1] / acc[3], acc[2] / acc[3]]
         } else {
             [acc[0], acc[1], acc[2]]
+        }
+    }
+}
+
+/// One polynomial piece of a curve in power form about its left end: `A(s0 + h) =
+/// Σ_d coefficients[d] h^d` for the homogeneous curve `A = (w x, w y, w z, w)`.
+#[derive(Debug, Clone, Copy)]
+pub struct PowerPiece {
+    degree: usize,
+    rational: bool,
+    coefficients: [[f64; 4]; CAP],
+}
+
+impl PowerPiece {
+    /// The curve point at offset `h` from the piece's left end (Horner's rule).
+    #[inline]
+    pub fn point(&self, h: f64) -> Point {
+        let c = &self.coefficients;
+        let mut acc = c[self.degree];
+        for coefficient in c[..self.degree].iter().rev() {
+            for i in 0..4 {
+                acc[i] = acc[i] * h + coefficient[i];
+            }
+        }
+        if self.rational {
+            [acc[0] / acc[3], acc[1] / acc[3], acc[2] / acc[3]]
+        } else {
+            [acc[0], acc[1], acc[2]]
+        }
+    }
+}
+
+impl Curve {
+    /// The polynomial piece that starts at `at`, of the curve with this control net over the
+    /// full knot vector `knots`: Taylor coefficients `A^(d)(at) / d!` of the span holding `at`
+    /// (the span on its right when `at` is a knot). Valid on `[at, next knot]`.
+    ///
+    /// Preconditions as for [`Curve::point_with_knots`]. No allocation.
+    pub fn power_piece_with_knots(&self, knots: &[f64], at: f64) -> PowerPiece {
+        let p = self.degree();
+        let span = find_span(knots, p, at);
+        let mut ders = [[0.0; CAP]; CAP];
+        basis_derivatives(knots, p, span, at, p, &mut ders);
+        let mut coefficients = [[0.0; 4]; CAP];
+        let mut factorial = 1.0;
+        for (d, row) in ders.iter().enumerate().take(p + 1) {
+            if d > 0 {
+                factorial *= d as f64;
+            }
+            let mut c = [0.0; 4];
+            for (r, &value) in row.iter().enumerate().take(p + 1) {
+                let pw = self.homogeneous()[span - p + r];
+                for (ci, cv) in c.iter_mut().enumerate() {
+                    *cv += value * pw[ci];
+                }
+            }
+            coefficients[d] = c.map(|v| v / factorial);
+        }
+        PowerPiece {
+            degree: p,
+            rational: self.is_rational(),
+            coefficients,
         }
     }
 }
