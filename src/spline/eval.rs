@@ -185,7 +185,10 @@ impl<'c> BatchEvaluator<'c> {
         if in_hint {
             hint
         } else {
-            self.starts.partition_point(|&s| s <= t).saturating_sub(1).min(last)
+            self.starts
+                .partition_point(|&s| s <= t)
+                .saturating_sub(1)
+                .min(last)
         }
     }
 
@@ -247,7 +250,11 @@ impl<'c> BatchEvaluator<'c> {
         out: &mut [Point],
     ) -> Result<(), EvalError> {
         let count = parameters.len();
-        assert_eq!(out.len(), (order + 1) * count, "one output slot per parameter and order");
+        assert_eq!(
+            out.len(),
+            (order + 1) * count,
+            "one output slot per parameter and order"
+        );
         let p = self.curve.degree();
         let rational = self.curve.is_rational();
         let mut homogeneous = [[0.0; 4]; CAP];
@@ -292,7 +299,11 @@ fn derivative_quotients(homogeneous_to_p: &[[f64; 4]], out: &mut [Point]) {
     let w0 = homogeneous_to_p[0][3];
     let p = homogeneous_to_p.len() - 1;
     for k in 0..out.len() {
-        let a = if k <= p { homogeneous_to_p[k] } else { [0.0; 4] };
+        let a = if k <= p {
+            homogeneous_to_p[k]
+        } else {
+            [0.0; 4]
+        };
         let mut v = [a[0], a[1], a[2]];
         for i in 1..=k.min(p) {
             let factor = binomial(k, i) * homogeneous_to_p[i][3];
