@@ -314,3 +314,79 @@ fn derivative_quotients(homogeneous_to_p: &[[f64; 4]], out: &mut [Point]) {
         out[k] = [v[0] / w0, v[1] / w0, v[2] / w0];
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::spline::CurveLimits;
+    use crate::spline::vector::{cross, norm};
+    use approx::assert_relative_eq;
+
+    /// Closed-form values below are exact up to rounding.
+    const TOL: f64 = 1e-13;
+
+    #[test]
+    fn binomials() {
+        let row: Vec<f64> = (0..=6).map(|i| binomial(6, i)).collect();
+        assert_eq!(row, [1.0, 6.0, 15.0, 20.0, 15.0, 6.0, 1.0]);
+        assert_eq!(binomial(15, 7), 6435.0);
+    }
+
+    /// The quarter of the unit circle as a rational quadratic: `d = (1,0), (1,1), (0,1)`,
+    /// `w = 1, √2/2, 1`. Every point is at distance 1 from the origin, the curvature is 1, and
+    /// `s'(0) = 2 w_1/w_0 (d_1 - d_0) = (0, √2)`.
+    fn quarter_circle() -> Curve {
+        let points = [vec![1.0, 0.0], vec![1.0, 1.0], vec![0.0, 1.0]];
+        let weights = [1.0, std::f64::consts::FRAC_1_SQRT_2, 1.0];
+        let knots = [0.0, 0.0, 0.0, 1.0, 1.0, 1.0];
+        Curve::new(2, &points, &knots, Some(&weights), &CurveLimits::default()).unwrap()
+    }
+
+    #[test]
+    fn quarter_circle_points_and_derivatives() {
+        let curve = quarter_circle();
+        let parameters: Vec<f64> = (0..=20).map(|i| f64::from(i) / 20.0).collect();
+        let mut batch = vec![[0.0; 3]; 3 * parameters.len()];
+        BatchEvaluator::new(&curve)
+            .derivatives_into(&parameters, 2, &mut batch)
+            .unwrap();
+        for (i, &t) in parameters.iter().enumerate() {
+            let mut single = [[0.0; 3]; 3];
+            curve.derivatives(t, &mut single).unwrap();
+            for d in [
+                single,
+                [
+                    batch[i],
+                    batch[parameters.len() + i],
+                    batch[2 * parameters.len() + i],
+                ],
+            ] {
+                assert_relative_eq!(norm(d[0]), 1.0, epsilon = TOL);
+                let speed = norm(d[1]);
+                assert_relative_eq!(norm(cross(d[1], d[2])) / speed.powi(3), 1.0, epsilon = TOL);
+            }
+        }
+        let mut start = [[0.0; 3]; 2];
+        curve.derivatives(0.0, &mut start).unwrap();
+        assert_relative_eq!(
+            start[1][..],
+            [0.0, std::f64::consts::SQRT_2, 0.0][..],
+            epsilon = TOL
+        );
+        let middle = curve.point(0.5).unwrap();
+        let half = std::f64::consts::FRAC_1_SQRT_2;
+        assert_relative_eq!(middle[..], [half, half, 0.0][..], epsilon = TOL);
+    }
+
+    #[test]
+    fn uniform_parameters_hit_both_ends_exactly() {
+        let points: Vec<Vec<f64>> = (0..4).map(|i| vec![f64::from(i), 0.0]).collect();
+        let knots = [0.1, 0.2, 0.3, 0.7, 0.9, 1.3, 1.7];
+        let curve = Curve::new(2, &points, &knots, None, &CurveLimits::default()).unwrap();
+        let parameters: Vec<f64> = curve.uniform_parameters(7).collect();
+        assert_eq!(parameters.len(), 7);
+        assert_eq!(parameters[0], 0.3);
+        assert_eq!(parameters[6], 0.9);
+        assert!(parameters.windows(2).all(|w| w[0] < w[1]));
+    }
+}
