@@ -335,3 +335,64 @@ fn out_of_domain_parameters_are_refused() {
         .unwrap_err();
     assert_eq!(err, EvalError::NonFiniteParameter { index: 1 });
 }
+
+/// Batches longer than the evaluator's internal chunks: every point equals `Curve::point`, and
+/// an invalid parameter far into the batch is reported by its own index.
+#[test]
+fn long_batches_match_single_points() {
+    use knotshape::spline::EvalError;
+    let points = [
+        [0.0, 0.0],
+        [1.0, 2.0],
+        [3.0, 2.5],
+        [4.0, 0.0],
+        [6.0, 1.0],
+        [7.0, 3.0],
+    ];
+    let (curve, case) = fixed_case(
+        3,
+        &points,
+        &[0.0, 0.0, 0.0, 0.0, 0.7, 1.1, 2.0, 2.0, 2.0, 2.0],
+    );
+    let batch = BatchEvaluator::new(&curve);
+    let count = 10_007;
+    // A scrambled order (a multiplicative permutation) over the whole domain, ends included.
+    let mut parameters: Vec<f64> = (0..count)
+        .map(|i| 2.0 * ((i * 3_001) % count) as f64 / (count - 1) as f64)
+        .collect();
+    parameters[5_000] = 2.0;
+    let mut out = vec![[f64::NAN; 3]; count];
+    batch.points_into(&parameters, &mut out).unwrap();
+    for (&t, &p) in parameters.iter().zip(&out) {
+        assert_close(
+            p,
+            curve.point(t).unwrap(),
+            POINT_TOL,
+            7.0,
+            &format!("batch point at {t}"),
+        );
+    }
+    for &i in &[0, 2_047, 2_048, 9_999] {
+        let t = parameters[i];
+        assert_close(
+            out[i],
+            case.reference.point(t),
+            POINT_TOL,
+            7.0,
+            &format!("reference at {t}"),
+        );
+    }
+    parameters[4_500] = f64::NAN;
+    let err = batch.points_into(&parameters, &mut out).unwrap_err();
+    assert_eq!(err, EvalError::NonFiniteParameter { index: 4_500 });
+    parameters[4_500] = 2.5;
+    let err = batch.points_into(&parameters, &mut out).unwrap_err();
+    assert_eq!(
+        err,
+        EvalError::OutsideDomain {
+            index: 4_500,
+            value: 2.5,
+            domain: (0.0, 2.0)
+        }
+    );
+}
