@@ -112,26 +112,31 @@ proptest! {
         prop_assert_eq!(parameters[count - 1], hi);
     }
 
-    /// `Curve::derivatives` and `BatchEvaluator::derivatives_into`, orders `0..=p+1` (rational
-    /// too), equal the reference's hodograph derivatives, at knots (span on the right), at both
-    /// ends (limit from the left) and at random parameters.
+    /// `Curve::derivatives` and `BatchEvaluator::derivatives_into` (unsorted and sorted
+    /// parameters), orders `0..=p+1` (rational too), equal the reference's hodograph
+    /// derivatives, at knots (span on the right), at both ends (limit from the left) and at
+    /// random parameters.
     #[test]
     fn derivatives_match_reference(case in curve_case(CaseOptions::default()), fractions in vec(0.0..=1.0f64, 0..8)) {
         let curve = case.curve();
         let batch = BatchEvaluator::new(&curve);
         let order = case.degree + 1;
-        let parameters = case.parameters(&fractions);
-        let mut batch_out = vec![[f64::NAN; 3]; (order + 1) * parameters.len()];
-        batch.derivatives_into(&parameters, order, &mut batch_out).unwrap();
-        for (index, &t) in parameters.iter().enumerate() {
-            let (expected, scales) = reference_derivatives(&case.reference, t, order);
-            let mut single = vec![[f64::NAN; 3]; order + 1];
-            curve.derivatives(t, &mut single).unwrap();
-            for k in 0..=order {
-                let what = format!("derivative {k} at {t}");
-                assert_close(single[k], expected[k], DERIVATIVE_TOL, scales[k], &what);
-                let b = batch_out[k * parameters.len() + index];
-                assert_close(b, expected[k], DERIVATIVE_TOL, scales[k], &format!("batch {what}"));
+        let unsorted = case.parameters(&fractions);
+        let mut sorted = unsorted.clone();
+        sorted.sort_by(f64::total_cmp);
+        for parameters in [unsorted, sorted] {
+            let mut batch_out = vec![[f64::NAN; 3]; (order + 1) * parameters.len()];
+            batch.derivatives_into(&parameters, order, &mut batch_out).unwrap();
+            for (index, &t) in parameters.iter().enumerate() {
+                let (expected, scales) = reference_derivatives(&case.reference, t, order);
+                let mut single = vec![[f64::NAN; 3]; order + 1];
+                curve.derivatives(t, &mut single).unwrap();
+                for k in 0..=order {
+                    let what = format!("derivative {k} at {t}");
+                    assert_close(single[k], expected[k], DERIVATIVE_TOL, scales[k], &what);
+                    let b = batch_out[k * parameters.len() + index];
+                    assert_close(b, expected[k], DERIVATIVE_TOL, scales[k], &format!("batch {what}"));
+                }
             }
         }
     }
