@@ -265,8 +265,8 @@ impl<'c> BatchEvaluator<'c> {
     /// degree (so that Horner's loop is unrolled). Every parameter must lie in the domain.
     #[inline]
     fn dispatch(&self, parameters: impl Iterator<Item = f64>, out: &mut [Point]) {
-        /// Picks the kernel for `(lanes, rational)` with degree `$p` known at compile time up
-        /// to 5 (`0`: read at run time).
+        /// Picks the kernel for `(lanes, rational)`, with the degree a compile-time constant
+        /// up to 5 (`0`: read at run time).
         macro_rules! by_degree {
             ($lanes:literal, $rational:literal) => {
                 match self.curve.degree() {
