@@ -127,3 +127,84 @@ pub(crate) fn basis_derivatives(
         factor *= (p - k) as f64;
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use approx::assert_relative_eq;
+
+    /// Known values are exact binary fractions; this only absorbs rounding.
+    const TOL: f64 = 1e-14;
+
+    /// The NURBS Book, Examples 2.3 and 2.4: `U = {0,0,0,1,2,3,4,4,5,5,5}`, `p = 2`.
+    const KNOTS: [f64; 11] = [0.0, 0.0, 0.0, 1.0, 2.0, 3.0, 4.0, 4.0, 5.0, 5.0, 5.0];
+
+    #[test]
+    fn span_search() {
+        assert_eq!(find_span(&KNOTS, 2, 0.0), 2);
+        assert_eq!(find_span(&KNOTS, 2, 2.5), 4);
+        assert_eq!(
+            find_span(&KNOTS, 2, 3.0),
+            5,
+            "a knot uses the span on its right"
+        );
+        assert_eq!(find_span(&KNOTS, 2, 4.0), 7, "past a double knot");
+        assert_eq!(
+            find_span(&KNOTS, 2, 5.0),
+            7,
+            "the right end uses the last non-empty span"
+        );
+    }
+
+    #[test]
+    fn basis_functions_of_the_nurbs_book_example() {
+        // N_{2,2}(5/2) = 1/8, N_{3,2}(5/2) = 6/8, N_{4,2}(5/2) = 1/8.
+        let mut out = [0.0; CAP];
+        basis_functions(&KNOTS, 2, 4, 2.5, &mut out);
+        for (value, expected) in out[..3].iter().zip([0.125, 0.75, 0.125]) {
+            assert_relative_eq!(*value, expected, epsilon = TOL);
+        }
+    }
+
+    #[test]
+    fn basis_derivatives_of_the_nurbs_book_example() {
+        // On [2, 3): N_2 = (3-u)²/2, N_3 = 1 - N_2 - N_4, N_4 = (u-2)²/2.
+        let mut ders = [[0.0; CAP]; CAP];
+        basis_derivatives(&KNOTS, 2, 4, 2.5, 2, &mut ders);
+        let expected = [[0.125, 0.75, 0.125], [-0.5, 0.0, 0.5], [1.0, -2.0, 1.0]];
+        for (row, expected_row) in ders.iter().zip(expected) {
+            for (value, e) in row[..3].iter().zip(expected_row) {
+                assert_relative_eq!(*value, e, epsilon = TOL);
+            }
+        }
+    }
+
+    #[test]
+    fn partition_of_unity_and_its_derivatives() {
+        // A cubic with a double interior knot and an unclamped start.
+        let knots = [-1.0, -0.5, 0.0, 0.0, 0.4, 1.0, 1.0, 1.7, 2.0, 2.0, 2.0, 2.0];
+        let p = 3;
+        for i in 0..=40 {
+            let t = 2.0 * f64::from(i) / 40.0;
+            let span = find_span(&knots, p, t);
+            let mut ders = [[0.0; CAP]; CAP];
+            basis_derivatives(&knots, p, span, t, p, &mut ders);
+            let mut values = [0.0; CAP];
+            basis_functions(&knots, p, span, t, &mut values);
+            let sum: f64 = values[..=p].iter().sum();
+            assert_relative_eq!(sum, 1.0, epsilon = TOL);
+            for (k, row) in ders.iter().enumerate().take(p + 1) {
+                let expected = if k == 0 { 1.0 } else { 0.0 };
+                let scale = row[..=p].iter().fold(1.0f64, |m, v| m.max(v.abs()));
+                assert_relative_eq!(
+                    row[..=p].iter().sum::<f64>(),
+                    expected,
+                    epsilon = TOL * scale
+                );
+            }
+            for (a, b) in values[..=p].iter().zip(&ders[0][..=p]) {
+                assert_relative_eq!(*a, *b, epsilon = TOL);
+            }
+        }
+    }
+}

@@ -472,3 +472,284 @@ fn check_knot_values(
     }
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Five planar control points.
+    fn points(count: usize) -> Vec<Vec<f64>> {
+        (0..count).map(|i| vec![i as f64, (i * i) as f64]).collect()
+    }
+
+    /// A clamped quadratic over five control points: the full vector (8 values).
+    const FULL: [f64; 8] = [0.0, 0.0, 0.0, 1.0, 2.0, 3.0, 3.0, 3.0];
+
+    fn build(
+        degree: usize,
+        points: &[Vec<f64>],
+        knots: &[f64],
+        weights: Option<&[f64]>,
+    ) -> Result<Curve, CurveError> {
+        Curve::new(degree, points, knots, weights, &CurveLimits::default())
+    }
+
+    /// The field named by the error of invalid data.
+    fn field_of(result: Result<Curve, CurveError>) -> CurveField {
+        result.expect_err("the data break a rule").field()
+    }
+
+    #[test]
+    fn both_conventions_give_the_same_full_vector() {
+        let full = build(2, &points(5), &FULL, None).unwrap();
+        let trimmed = build(2, &points(5), &FULL[1..7], None).unwrap();
+        assert_eq!(full.convention(), KnotConvention::Full);
+        assert_eq!(trimmed.convention(), KnotConvention::Trimmed);
+        assert_eq!(full.knots(), trimmed.knots());
+        assert_eq!(trimmed.knots_in_convention(), &FULL[1..7]);
+        assert_eq!(full.domain(), (0.0, 3.0));
+        assert_eq!(KnotConvention::Trimmed.caller_index(0, 8), None);
+        assert_eq!(KnotConvention::Trimmed.caller_index(7, 8), None);
+        assert_eq!(KnotConvention::Trimmed.caller_index(3, 8), Some(2));
+        assert_eq!(KnotConvention::Trimmed.full_index(2), 3);
+    }
+
+    #[test]
+    fn degree_must_be_at_least_one() {
+        let err = build(0, &points(5), &FULL[..6], None).unwrap_err();
+        assert_eq!(err, CurveError::DegreeTooLow);
+        assert_eq!(err.field(), CurveField::Degree);
+    }
+
+    #[test]
+    fn degree_must_respect_the_limit() {
+        let limits = CurveLimits {
+            max_degree: 2,
+            ..CurveLimits::default()
+        };
+        let err = Curve::new(3, &points(5), &[0.0; 9], None, &limits).unwrap_err();
+        assert_eq!(err, CurveError::DegreeTooHigh { degree: 3, max: 2 });
+        assert_eq!(err.field(), CurveField::Degree);
+        // A configured limit above MAX_DEGREE is capped at MAX_DEGREE.
+        let loose = CurveLimits {
+            max_degree: 99,
+            ..CurveLimits::default()
+        };
+        let degree = MAX_DEGREE + 1;
+        let err = Curve::new(degree, &points(degree + 1), &[0.0; 40], None, &loose).unwrap_err();
+        assert_eq!(
+            err,
+            CurveError::DegreeTooHigh {
+                degree,
+                max: MAX_DEGREE
+            }
+        );
+    }
+
+    #[test]
+    fn control_point_count_must_fit_the_degree_and_the_limit() {
+        let few = build(2, &points(2), &[0.0, 0.0, 0.0, 1.0, 1.0], None);
+        assert_eq!(field_of(few), CurveField::ControlPoints);
+        let limits = CurveLimits {
+            max_control_points: 4,
+            ..CurveLimits::default()
+        };
+        let many = Curve::new(2, &points(5), &FULL, None, &limits);
+        assert_eq!(field_of(many), CurveField::ControlPoints);
+        assert!(Curve::new(2, &points(4), &FULL[1..], None, &limits).is_ok());
+    }
+
+    #[test]
+    fn control_points_must_all_be_2d_or_all_3d() {
+        let mut mixed = points(5);
+        mixed[3].push(1.0);
+        let err = build(2, &mixed, &FULL, None).unwrap_err();
+        assert_eq!(
+            err.field(),
+            CurveField::ControlPoint {
+                index: 3,
+                coordinate: None
+            }
+        );
+        for bad_len in [1, 4] {
+            let mut first = points(5);
+            first[0] = vec![0.0; bad_len];
+            let field = field_of(build(2, &first, &FULL, None));
+            assert_eq!(
+                field,
+                CurveField::ControlPoint {
+                    index: 0,
+                    coordinate: None
+                }
+            );
+        }
+        let spatial: Vec<Vec<f64>> = points(5)
+            .into_iter()
+            .map(|p| vec![p[0], p[1], 1.0])
+            .collect();
+        assert_eq!(
+            build(2, &spatial, &FULL, None).unwrap().dimension(),
+            Dimension::Three
+        );
+    }
+
+    #[test]
+    fn coordinates_must_be_finite() {
+        for (index, coordinate, value) in [
+            (2, 1, f64::NAN),
+            (4, 0, f64::INFINITY),
+            (0, 1, f64::NEG_INFINITY),
+        ] {
+            let mut bad = points(5);
+            bad[index][coordinate] = value;
+            let field = field_of(build(2, &bad, &FULL, None));
+            assert_eq!(
+                field,
+                CurveField::ControlPoint {
+                    index,
+                    coordinate: Some(coordinate)
+                }
+            );
+        }
+    }
+
+    #[test]
+    fn knot_count_must_match_either_convention() {
+        let err = build(2, &points(5), &FULL[..7], None).unwrap_err();
+        assert_eq!(
+            err,
+            CurveError::WrongKnotCount {
+                count: 7,
+                full: 8,
+                trimmed: 6
+            }
+        );
+        assert_eq!(err.field(), CurveField::Knots);
+        assert_eq!(field_of(build(2, &points(5), &[], None)), CurveField::Knots);
+    }
+
+    #[test]
+    fn knots_must_be_finite_named_by_the_callers_index() {
+        let mut full = FULL;
+        full[4] = f64::NAN;
+        assert_eq!(
+            field_of(build(2, &points(5), &full, None)),
+            CurveField::Knot(4)
+        );
+        let mut trimmed = FULL[1..7].to_vec();
+        trimmed[4] = f64::INFINITY;
+        assert_eq!(
+            field_of(build(2, &points(5), &trimmed, None)),
+            CurveField::Knot(4)
+        );
+    }
+
+    #[test]
+    fn knots_must_not_decrease() {
+        let full = [0.0, 0.0, 0.0, 2.0, 1.0, 3.0, 3.0, 3.0];
+        assert_eq!(
+            field_of(build(2, &points(5), &full, None)),
+            CurveField::Knot(4)
+        );
+        let trimmed = [0.0, 0.0, 2.0, 1.0, 3.0, 3.0];
+        let err = build(2, &points(5), &trimmed, None).unwrap_err();
+        assert_eq!(err, CurveError::DecreasingKnot { index: 3 });
+    }
+
+    #[test]
+    fn multiplicity_is_at_most_degree_plus_one() {
+        // At an end of a full vector degree + 2 values are allowed (u_0 has no effect; the
+        // envelope of a clamped curve has such ends), degree + 3 are not.
+        assert!(
+            build(
+                2,
+                &points(5),
+                &[0.0, 0.0, 0.0, 0.0, 1.0, 3.0, 3.0, 3.0],
+                None
+            )
+            .is_ok()
+        );
+        let start = [0.0, 0.0, 0.0, 0.0, 0.0, 3.0, 3.0, 3.0];
+        assert_eq!(
+            field_of(build(2, &points(5), &start, None)),
+            CurveField::Knot(4)
+        );
+        let interior = [0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0, 3.0, 3.0];
+        let err = build(2, &points(6), &interior, None).unwrap_err();
+        assert_eq!(
+            err,
+            CurveError::KnotMultiplicityTooHigh {
+                index: 6,
+                multiplicity: 4,
+                max: 3
+            }
+        );
+        let trimmed = [0.0, 0.0, 1.0, 1.0, 1.0, 1.0, 3.0];
+        assert_eq!(
+            field_of(build(2, &points(6), &trimmed, None)),
+            CurveField::Knot(5)
+        );
+        // p + 1 equal interior values are allowed (the curve may jump there).
+        assert!(
+            build(
+                2,
+                &points(6),
+                &[0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 3.0, 3.0, 3.0],
+                None
+            )
+            .is_ok()
+        );
+    }
+
+    #[test]
+    fn domain_must_not_be_empty() {
+        let full = [0.0, 0.0, 1.0, 1.0, 2.0, 2.0];
+        let err = build(2, &points(3), &full, None).unwrap_err();
+        assert_eq!(err, CurveError::EmptyDomain);
+        assert_eq!(err.field(), CurveField::Knots);
+        assert_eq!(
+            field_of(build(2, &points(3), &full[1..5], None)),
+            CurveField::Knots
+        );
+    }
+
+    #[test]
+    fn weights_must_be_one_per_control_point() {
+        let weights = [1.0; 4];
+        let err = build(2, &points(5), &FULL, Some(&weights)).unwrap_err();
+        assert_eq!(
+            err,
+            CurveError::WrongWeightCount {
+                count: 4,
+                expected: 5
+            }
+        );
+        assert_eq!(err.field(), CurveField::Weights);
+    }
+
+    #[test]
+    fn weights_must_be_finite() {
+        for (index, value) in [(2, f64::NAN), (0, f64::INFINITY)] {
+            let mut weights = [1.0; 5];
+            weights[index] = value;
+            assert_eq!(
+                field_of(build(2, &points(5), &FULL, Some(&weights))),
+                CurveField::Weight(index)
+            );
+        }
+    }
+
+    #[test]
+    fn weights_must_be_positive() {
+        for (index, value) in [(3, 0.0), (1, -1.0), (4, -0.0)] {
+            let mut weights = [1.0; 5];
+            weights[index] = value;
+            let err = build(2, &points(5), &FULL, Some(&weights)).unwrap_err();
+            assert_eq!(err, CurveError::NonPositiveWeight { index });
+            assert_eq!(err.field(), CurveField::Weight(index));
+        }
+        let rational = build(2, &points(5), &FULL, Some(&[0.5, 1.0, 2.0, 1.0, 0.5])).unwrap();
+        assert!(rational.is_rational());
+        assert_eq!(rational.weight(2), 2.0);
+    }
+}

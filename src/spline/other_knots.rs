@@ -4,6 +4,7 @@
 
 use super::basis::{CAP, basis_derivatives, basis_functions, find_span};
 use super::curve::Curve;
+use super::eval::multiply_add;
 use super::vector::Point;
 
 impl Curve {
@@ -51,7 +52,7 @@ impl PowerPiece {
         let mut acc = c[self.degree];
         for coefficient in c[..self.degree].iter().rev() {
             for i in 0..4 {
-                acc[i] = acc[i] * h + coefficient[i];
+                acc[i] = multiply_add(acc[i], h, coefficient[i]);
             }
         }
         if self.rational {

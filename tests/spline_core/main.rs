@@ -1,0 +1,28 @@
+//! Spline-core conformance tests: evaluation (single point and batch), derivatives and the
+//! envelope of `knotshape::spline`, checked against an independent textbook implementation.
+#![allow(clippy::unwrap_used)]
+
+mod envelope;
+mod evaluation;
+mod generators;
+mod reference;
+
+use proptest::test_runner::Config;
+
+/// Proptest cases per property: enough to meet every degree, dimension and knot convention
+/// many times, few enough that the whole suite stays well under a minute in a debug build.
+const CASES: u32 = 192;
+
+/// Upper bound on the time spent shrinking a failure, in milliseconds.
+const MAX_SHRINK_MS: u32 = 20_000;
+
+/// The proptest configuration of every property in this suite. Failures are not persisted:
+/// a case worth keeping becomes a named test.
+fn config() -> Config {
+    Config {
+        cases: CASES,
+        max_shrink_time: MAX_SHRINK_MS,
+        failure_persistence: None,
+        ..Config::default()
+    }
+}
