@@ -379,6 +379,7 @@ pub fn solve_pair(pair: KnotPair, k: &LocalKnots, x: f64, y: f64) -> ([[f64; 4];
     let tol = KNOT_TOLERANCE * (k.r - k.l).max(f64::MIN_POSITIVE);
     let (raw, n) = raw_solutions(pair, k, x, y);
     let [unknown_1, unknown_2] = pair.unknowns();
+    let moves = |knot: LocalKnot| knot == unknown_1 || knot == unknown_2;
     for &[a, b, c, e] in &raw[..n] {
         let keep_old = |value: f64, old: f64| {
             if (value - old).abs() <= tol {
@@ -393,14 +394,18 @@ pub fn solve_pair(pair: KnotPair, k: &LocalKnots, x: f64, y: f64) -> ([[f64; 4];
             keep_old(c, k.c),
             keep_old(e, k.e),
         );
-        // Bounds of each knot given the fixed ones (only the unknowns can move).
-        let Some(b) = clamp_within(b, k.l, k.t, tol) else {
+        // Bounds of each knot given the fixed ones (only the unknowns can move): a fixed `a`
+        // bounds `b` from below and a fixed `e` bounds `c` from above, so that a tiny
+        // violation is clamped onto the unknown, never onto the fixed knot.
+        let b_low = if moves(LocalKnot::A) { k.l } else { a };
+        let Some(b) = clamp_within(b, b_low, k.t, tol) else {
             continue;
         };
         let Some(a) = clamp_within(a, k.l, b, tol) else {
             continue;
         };
-        let Some(c) = clamp_within(c, k.t, k.r, tol) else {
+        let c_high = if moves(LocalKnot::E) { k.r } else { e };
+        let Some(c) = clamp_within(c, k.t, c_high, tol) else {
             continue;
         };
         let Some(e) = clamp_within(e, c, k.r, tol) else {
