@@ -377,10 +377,35 @@ pub fn solve_pair(pair: KnotPair, k: &LocalKnots, x: f64, y: f64) -> ([[f64; 4];
         return (result, 0);
     }
     let tol = KNOT_TOLERANCE * (k.r - k.l).max(f64::MIN_POSITIVE);
-    let (raw, n) = raw_solutions(pair, k, x, y);
+    // The equations are invariant under translation: solve with the knots relative to `t`,
+    // so that knots far from 0 (a large offset against their spacing) cost no accuracy by
+    // cancellation, then shift back; the fixed knots keep their exact old values.
+    let shifted = LocalKnots {
+        l: k.l - k.t,
+        a: k.a - k.t,
+        b: k.b - k.t,
+        t: 0.0,
+        c: k.c - k.t,
+        e: k.e - k.t,
+        r: k.r - k.t,
+    };
+    let (raw, n) = raw_solutions(pair, &shifted, x, y);
     let [unknown_1, unknown_2] = pair.unknowns();
     let moves = |knot: LocalKnot| knot == unknown_1 || knot == unknown_2;
     for &[a, b, c, e] in &raw[..n] {
+        let back = |knot: LocalKnot, value: f64| {
+            if moves(knot) {
+                value + k.t
+            } else {
+                k.get(knot)
+            }
+        };
+        let (a, b, c, e) = (
+            back(LocalKnot::A, a),
+            back(LocalKnot::B, b),
+            back(LocalKnot::C, c),
+            back(LocalKnot::E, e),
+        );
         let keep_old = |value: f64, old: f64| {
             if (value - old).abs() <= tol {
                 old
