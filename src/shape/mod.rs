@@ -16,7 +16,8 @@ pub use candidate::{
     candidate, frame_to_point,
 };
 pub use pairs::{
-    FRAME_ZERO_TOLERANCE, KNOT_TOLERANCE, KnotPair, LocalKnot, LocalKnots, solve_pair,
+    CLAMP_TOLERANCE, FRAME_RESIDUAL_TOLERANCE, FRAME_ZERO_TOLERANCE, KNOT_TOLERANCE, KnotPair,
+    LocalKnot, LocalKnots, solve_pair,
 };
 pub use regions::{
     CandidateRegions, DEFAULT_RELATIVE_TOLERANCE, PolygonOptions, RegionPolygon, domain_corners,

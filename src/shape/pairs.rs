@@ -15,6 +15,15 @@
 /// the bound, and a knot within it of its old value keeps its old value exactly.
 pub const KNOT_TOLERANCE: f64 = 1e-12;
 
+/// A root outside its knot bound by more than [`KNOT_TOLERANCE`] but at most
+/// `CLAMP_TOLERANCE · (R - L)` is clamped onto the bound and kept if the clamped knots still
+/// give the target's frame within [`FRAME_RESIDUAL_TOLERANCE`].
+pub const CLAMP_TOLERANCE: f64 = 1e-6;
+
+/// Largest frame error `|Δx|`, `|Δy|` of a clamped root (see [`CLAMP_TOLERANCE`]): far below
+/// the 1e-9 (relative) to which solutions are held.
+pub const FRAME_RESIDUAL_TOLERANCE: f64 = 1e-11;
+
 /// Frame coordinates with `|x| <= FRAME_ZERO_TOLERANCE` (likewise `y`) count as exactly 0,
 /// so that targets on the triangle's edges meet the forced cases `c = t` (x = 0), `b = t`
 /// (y = 0) despite rounding.
@@ -355,7 +364,10 @@ fn clamp_within(value: f64, lo: f64, hi: f64, tol: f64) -> Option<f64> {
 /// The solutions `[a, b, c, e]` of `pair` for the frame coordinates `(x, y)` that satisfy the
 /// monotonicity condition `L <= a <= b <= t <= c <= e <= R` with `c > b` (within
 /// [`KNOT_TOLERANCE`]; tiny violations clamped onto the bound, values within tolerance of
-/// the old ones snapped back to them). Duplicates are removed; at most two are returned.
+/// the old ones snapped back to them; a larger violation, up to [`CLAMP_TOLERANCE`], only
+/// when the clamped knots still give `(x, y)` within [`FRAME_RESIDUAL_TOLERANCE`], as for an
+/// ill-conditioned root of a target on a region's boundary). Duplicates are removed; at most
+/// two are returned.
 ///
 /// `x` and `y` within [`FRAME_ZERO_TOLERANCE`] of 0 count as 0. Edge cases: `x = 0` forces
 /// `c = t` and `y = 0` forces `b = t`; a knot that the equations then leave undetermined
@@ -423,22 +435,40 @@ pub fn solve_pair(pair: KnotPair, k: &LocalKnots, x: f64, y: f64) -> ([[f64; 4];
         // bounds `b` from below and a fixed `e` bounds `c` from above, so that a tiny
         // violation is clamped onto the unknown, never onto the fixed knot.
         let b_low = if moves(LocalKnot::A) { k.l } else { a };
-        let Some(b) = clamp_within(b, b_low, k.t, tol) else {
-            continue;
-        };
-        let Some(a) = clamp_within(a, k.l, b, tol) else {
-            continue;
-        };
         let c_high = if moves(LocalKnot::E) { k.r } else { e };
-        let Some(c) = clamp_within(c, k.t, c_high, tol) else {
+        let raw_values = [a, b, c, e];
+        let loose = CLAMP_TOLERANCE * (k.r - k.l);
+        let Some(b) = clamp_within(b, b_low, k.t, loose) else {
             continue;
         };
-        let Some(e) = clamp_within(e, c, k.r, tol) else {
+        let Some(a) = clamp_within(a, k.l, b, loose) else {
+            continue;
+        };
+        let Some(c) = clamp_within(c, k.t, c_high, loose) else {
+            continue;
+        };
+        let Some(e) = clamp_within(e, c, k.r, loose) else {
             continue;
         };
         let triple_knot = x == 0.0 && y == 0.0 && pair == KnotPair::Omega2 && b == k.t && c == k.t;
         if !(c > b || triple_knot) {
             continue;
+        }
+        // A root clamped by more than rounding (an ill-conditioned root of a target on or
+        // next to the region's boundary) is kept only when the clamped knots still reproduce
+        // the frame: the boundary is decided in the target's space, not the knots'.
+        let clamped_far = raw_values
+            .iter()
+            .zip([a, b, c, e])
+            .any(|(raw, value)| (raw - value).abs() > tol);
+        if clamped_far && !triple_knot {
+            let clamped = LocalKnots { a, b, c, e, ..*k };
+            let (fx, fy) = clamped.frame();
+            if !((fx - x).abs() <= FRAME_RESIDUAL_TOLERANCE
+                && (fy - y).abs() <= FRAME_RESIDUAL_TOLERANCE)
+            {
+                continue;
+            }
         }
         let candidate = [a, b, c, e];
         // The fixed knots must not have moved (clamping only touches the unknowns' bounds).
