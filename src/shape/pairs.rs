@@ -12,7 +12,8 @@
 
 /// Relative tolerance of the monotonicity condition: a bound is violated by at most
 /// `KNOT_TOLERANCE · (R - L)` before a root is rejected; smaller violations are clamped onto
-/// the bound, and a knot within it of its old value keeps its old value exactly.
+/// the bound, a knot within it inside a bound snaps onto the bound (coincident knots come
+/// out exactly equal), and a knot within it of its old value keeps its old value exactly.
 pub const KNOT_TOLERANCE: f64 = 1e-12;
 
 /// A root outside its knot bound by more than [`KNOT_TOLERANCE`] but at most
@@ -353,18 +354,28 @@ fn raw_solutions(pair: KnotPair, k: &LocalKnots, x: f64, y: f64) -> ([[f64; 4]; 
     (out, count)
 }
 
-/// Snaps `value` onto `[lo, hi]` when it is outside by at most `tol`; `None` when further out.
-fn clamp_within(value: f64, lo: f64, hi: f64, tol: f64) -> Option<f64> {
-    if !value.is_finite() || value < lo - tol || value > hi + tol {
+/// Clamps `value` onto `[lo, hi]` when it is outside by at most `reach` (`None` when further
+/// out), and snaps it onto a bound it lies within `snap` of, so that a knot meant to coincide
+/// with its neighbour does so exactly.
+fn clamp_within(value: f64, lo: f64, hi: f64, reach: f64, snap: f64) -> Option<f64> {
+    if !value.is_finite() || value < lo - reach || value > hi + reach {
         return None;
     }
-    Some(value.clamp(lo, hi))
+    let value = value.clamp(lo, hi);
+    Some(if value - lo <= snap {
+        lo
+    } else if hi - value <= snap {
+        hi
+    } else {
+        value
+    })
 }
 
 /// The solutions `[a, b, c, e]` of `pair` for the frame coordinates `(x, y)` that satisfy the
 /// monotonicity condition `L <= a <= b <= t <= c <= e <= R` with `c > b` (within
 /// [`KNOT_TOLERANCE`]; tiny violations clamped onto the bound, values within tolerance of
-/// the old ones snapped back to them; a larger violation, up to [`CLAMP_TOLERANCE`], only
+/// the old ones snapped back to them, values within tolerance inside a bound snapped onto it;
+/// a larger violation, up to [`CLAMP_TOLERANCE`], only
 /// when the clamped knots still give `(x, y)` within [`FRAME_RESIDUAL_TOLERANCE`], as for an
 /// ill-conditioned root of a target on a region's boundary). Duplicates are removed; at most
 /// two are returned.
@@ -438,16 +449,16 @@ pub fn solve_pair(pair: KnotPair, k: &LocalKnots, x: f64, y: f64) -> ([[f64; 4];
         let c_high = if moves(LocalKnot::E) { k.r } else { e };
         let raw_values = [a, b, c, e];
         let loose = CLAMP_TOLERANCE * (k.r - k.l);
-        let Some(b) = clamp_within(b, b_low, k.t, loose) else {
+        let Some(b) = clamp_within(b, b_low, k.t, loose, tol) else {
             continue;
         };
-        let Some(a) = clamp_within(a, k.l, b, loose) else {
+        let Some(a) = clamp_within(a, k.l, b, loose, tol) else {
             continue;
         };
-        let Some(c) = clamp_within(c, k.t, c_high, loose) else {
+        let Some(c) = clamp_within(c, k.t, c_high, loose, tol) else {
             continue;
         };
-        let Some(e) = clamp_within(e, c, k.r, loose) else {
+        let Some(e) = clamp_within(e, c, k.r, loose, tol) else {
             continue;
         };
         let triple_knot = x == 0.0 && y == 0.0 && pair == KnotPair::Omega2 && b == k.t && c == k.t;
