@@ -68,7 +68,8 @@ pub struct ShapeQuery<'a> {
     pub side: SideChoice,
     /// The knot pairs to try.
     pub pairs: &'a [KnotPair],
-    /// Drop solutions that change `u_{k-1}` or `u_{n+1}` (MATH.md "Keeping the curve's domain").
+    /// Drop solutions that change `u_{k-1}` or `u_{n+1}` (MATH.md "Keeping the curve's domain"),
+    /// or that move a knot onto a clamped end (which moves the end point just the same).
     pub keep_domain: bool,
 }
 
@@ -211,7 +212,8 @@ pub struct SolveOptions {
 ///
 /// Per applicable candidate `j`: the new knots are `u_{j+1} := t` plus the pair's two
 /// unknowns from [`solve_pair`]. A solution is dropped when `keep_domain` is set and it
-/// changes `u_3` or `u_{n+1}`. Each solution is evaluated with the spline core at `t`.
+/// changes `u_3` or `u_{n+1}` or gives a domain end more than 4 equal knots (the end point
+/// would move). Each solution is evaluated with the spline core at `t`.
 /// Membership (`contains`) is "this pair kept a solution", so it can never disagree with the
 /// solutions.
 pub fn solve(
@@ -251,7 +253,9 @@ pub fn solve(
                 new_knots[j + 2] = c;
                 new_knots[j + 3] = e;
                 if query.keep_domain
-                    && (new_knots[3] != knots[3] || new_knots[n + 1] != knots[n + 1])
+                    && (new_knots[3] != knots[3]
+                        || new_knots[n + 1] != knots[n + 1]
+                        || over_clamped_end(&new_knots, n))
                 {
                     continue;
                 }
@@ -303,6 +307,16 @@ pub fn solve(
         candidates,
         solutions,
     })
+}
+
+/// Whether a domain end's value occurs more than `p + 1 = 4` times in the cubic knot vector
+/// `knots` (`n + 1` control points). A knot moved onto the end of a clamped curve's domain
+/// does this (e.g. `t = u_3` with `u_4 := t`, or `a := L = u_3`): the end control point's
+/// basis function vanishes and the curve's end point jumps to the next control point, although
+/// `u_3` and `u_{n+1}` keep their values. The keep-domain rule drops such solutions too.
+fn over_clamped_end(knots: &[f64], n: usize) -> bool {
+    let count = |value: f64| knots.iter().filter(|&&u| u == value).count();
+    count(knots[3]) > 4 || count(knots[n + 1]) > 4
 }
 
 /// A numerical safeguard, not the accuracy: a closed-form root whose re-evaluated point misses
