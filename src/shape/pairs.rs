@@ -214,6 +214,15 @@ fn e_from_y(y: f64, k: &LocalKnots, b: f64, c: f64) -> Option<Unknown> {
     (c > b).then(|| Unknown::Value(b + (k.t - b) * (k.t - b) / (y * (c - b))))
 }
 
+/// `t` when `value` is within `KNOT_TOLERANCE · (R - L)` of it, else `value`.
+fn snap_to_t(value: f64, k: &LocalKnots) -> f64 {
+    if (value - k.t).abs() <= KNOT_TOLERANCE * (k.r - k.l) {
+        k.t
+    } else {
+        value
+    }
+}
+
 /// Real roots of `A z^2 + B z + C = 0`, by the numerically stable formula
 /// `q = -(B + sign(B) √D) / 2`, roots `q / A` and `C / q`. `A` negligible against `B` and `C`
 /// makes it linear; a discriminant negative only by rounding counts as a double root.
@@ -329,6 +338,9 @@ fn raw_solutions(pair: KnotPair, k: &LocalKnots, x: f64, y: f64) -> ([[f64; 4]; 
                 Some(Unknown::Free) => k.c,
                 None => return (out, 0),
             };
+            // x = 0 needs c = t exactly (then a is free); c from the y-equation meets t only
+            // up to rounding.
+            let c = if x == 0.0 { snap_to_t(c, k) } else { c };
             push(a_from_x(x, k, k.b, c), k.b, c, Some(Unknown::Value(k.e)), k);
         }
         KnotPair::Omega5 => {
@@ -348,6 +360,9 @@ fn raw_solutions(pair: KnotPair, k: &LocalKnots, x: f64, y: f64) -> ([[f64; 4]; 
                 Some(Unknown::Free) => k.b,
                 None => return (out, 0),
             };
+            // y = 0 needs b = t exactly (then e is free); b from the x-equation meets t only
+            // up to rounding.
+            let b = if y == 0.0 { snap_to_t(b, k) } else { b };
             push(Some(Unknown::Value(k.a)), b, k.c, e_from_y(y, k, b, k.c), k);
         }
     }
