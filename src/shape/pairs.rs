@@ -555,14 +555,18 @@ pub fn solve_pair(pair: KnotPair, k: &LocalKnots, x: f64, y: f64) -> ([[f64; 4];
             keep_old(c, k.c),
             keep_old(e, k.e),
         );
-        // Bounds of each knot given the fixed ones (only the unknowns can move).
-        let Some(b) = clamp_within(b, k.l, k.t, clamp_tol) else {
+        // Bounds of each knot; a bound set by a fixed neighbour (a below b, e above c) is that
+        // neighbour's value, so clamping only ever moves an unknown onto a fixed knot.
+        let moves = |knot: LocalKnot| knot == unknown_1 || knot == unknown_2;
+        let b_floor = if moves(LocalKnot::A) { k.l } else { k.a };
+        let c_ceiling = if moves(LocalKnot::E) { k.r } else { k.e };
+        let Some(b) = clamp_within(b, b_floor, k.t, clamp_tol) else {
             continue;
         };
         let Some(a) = clamp_within(a, k.l, b, clamp_tol) else {
             continue;
         };
-        let Some(c) = clamp_within(c, k.t, k.r, clamp_tol) else {
+        let Some(c) = clamp_within(c, k.t, c_ceiling, clamp_tol) else {
             continue;
         };
         let Some(e) = clamp_within(e, c, k.r, clamp_tol) else {

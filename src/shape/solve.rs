@@ -73,7 +73,8 @@ pub struct ShapeQuery<'a> {
     pub side: SideChoice,
     /// The knot pairs to try.
     pub pairs: &'a [KnotPair],
-    /// Drop solutions that change `u_{k-1}` or `u_{n+1}` (MATH.md "Keeping the curve's domain").
+    /// Drop solutions that change `u_{k-1}` or `u_{n+1}` (MATH.md "Keeping the curve's domain"),
+    /// or that move a knot onto a clamped end (which moves the end point just the same).
     pub keep_domain: bool,
 }
 
@@ -213,7 +214,7 @@ pub struct SolveOptions {
 ///
 /// Per applicable candidate `j`: the new knots are `u_{j+1} := t` plus the pair's two
 /// unknowns from [`solve_pair`]. A solution is dropped when `keep_domain` is set and it
-/// changes `u_3` or `u_{n+1}`. Each solution is evaluated with the spline core at `t`.
+/// moves an end of the curve (changes `u_3` or `u_{n+1}`, or moves a knot onto a clamped end). Each solution is evaluated with the spline core at `t`.
 /// Membership (`contains`) is "this pair kept a solution", so it can never disagree with the
 /// solutions.
 pub fn solve(
@@ -255,9 +256,7 @@ pub fn solve(
                 new_knots[j + 1] = t;
                 new_knots[j + 2] = c;
                 new_knots[j + 3] = e;
-                if query.keep_domain
-                    && (new_knots[3] != knots[3] || new_knots[n + 1] != knots[n + 1])
-                {
+                if query.keep_domain && moves_domain_ends(knots, &new_knots) {
                     continue;
                 }
                 let domain_ok = new_knots[3] < new_knots[n + 1];
@@ -315,6 +314,18 @@ pub fn solve(
 /// plus the rounding floor `64 ε |target|`. A root that fails (ill-conditioned, or clamped too
 /// far onto a bound) is discarded.
 pub const RESIDUAL_TOLERANCE: f64 = 1e-9;
+
+/// Whether `new_knots` move an end of the curve: they change `u_p` or `u_{n+1}` (the domain),
+/// or raise the multiplicity of either end value above `p + 1` (a knot moved onto a clamped
+/// end takes `d_0` or `d_n` out of the curve, so its end point moves just the same).
+fn moves_domain_ends(old: &[f64], new: &[f64]) -> bool {
+    const P: usize = 3;
+    let end = old.len() - P - 1;
+    [P, end].into_iter().any(|i| {
+        let count = |knots: &[f64]| knots.iter().filter(|&&u| u == knots[i]).count();
+        new[i] != old[i] || count(new) > count(old).max(P + 1)
+    })
+}
 
 /// Membership of the target in every requested region of every requested side: [`solve`]
 /// without the deviation measure.
