@@ -109,11 +109,17 @@ base="http://127.0.0.1:$port"
 server_env=(
     "KNOTSHAPE_LISTEN=127.0.0.1:$port"
     "KNOTSHAPE_LOG=off"
-    "RUST_LOG=off"
-    "KNOTSHAPE_MAX_CONCURRENCY=$(( CONNECTIONS * 16 ))"
+    "KNOTSHAPE_CONCURRENCY_LIMIT=$(( CONNECTIONS * 16 ))"
+    "KNOTSHAPE_DRAIN_DELAY_MS=0"
 )
+# Settings from the caller's environment (an API key, say) would skew or
+# break the run: the server gets only the ones above.
+unset_inherited=()
+for name in $(compgen -e); do
+    if [[ "$name" == KNOTSHAPE_* ]]; then unset_inherited+=(-u "$name"); fi
+done
 log "starting $BIN on 127.0.0.1:$port"
-env "${server_env[@]}" "$BIN" >"$workdir/server.log" 2>&1 &
+env "${unset_inherited[@]}" "${server_env[@]}" "$BIN" >"$workdir/server.log" 2>&1 &
 server_pid=$!
 
 for _ in $(seq 100); do
