@@ -1,4 +1,10 @@
 //! knotshape: B-spline/NURBS evaluation and knot-pair shape modification, with an HTTP edge.
 #![cfg_attr(test, allow(clippy::unwrap_used))]
 
+pub mod config;
+pub mod http;
+pub mod shape;
 pub mod spline;
+pub mod telemetry;
+
+pub use http::{app, app_with_readiness, openapi, openapi_json};

@@ -33,7 +33,13 @@ pub(crate) fn find_span(knots: &[f64], degree: usize, t: f64) -> usize {
 ///
 /// Precondition: `u_m < u_{m+1}`; then every denominator `u_{m+r+1} - u_{m+1-j+r}` (r < j) is
 /// at least `u_{m+1} - u_m > 0`, whatever the multiplicities elsewhere.
-pub(crate) fn basis_functions(knots: &[f64], degree: usize, span: usize, t: f64, out: &mut [f64; CAP]) {
+pub(crate) fn basis_functions(
+    knots: &[f64],
+    degree: usize,
+    span: usize,
+    t: f64,
+    out: &mut [f64; CAP],
+) {
     let mut left = [0.0; CAP];
     let mut right = [0.0; CAP];
     out[0] = 1.0;

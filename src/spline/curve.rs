@@ -101,21 +101,41 @@ pub enum CurveError {
     #[error("degree {degree} exceeds the limit {max}")]
     DegreeTooHigh { degree: usize, max: usize },
     #[error("{count} control points given, a degree-{degree} curve needs at least {needed}")]
-    TooFewControlPoints { count: usize, degree: usize, needed: usize },
+    TooFewControlPoints {
+        count: usize,
+        degree: usize,
+        needed: usize,
+    },
     #[error("{count} control points exceed the limit {max}")]
     TooManyControlPoints { count: usize, max: usize },
     #[error("control point {index} has {len} coordinates; all must have {expected} (2 or 3)")]
-    WrongDimension { index: usize, len: usize, expected: usize },
+    WrongDimension {
+        index: usize,
+        len: usize,
+        expected: usize,
+    },
     #[error("control point {index} coordinate {coordinate} is not a finite number")]
     NonFiniteCoordinate { index: usize, coordinate: usize },
-    #[error("{count} knots given; expected {full} (full vector) or {trimmed} (without the two end values)")]
-    WrongKnotCount { count: usize, full: usize, trimmed: usize },
+    #[error(
+        "{count} knots given; expected {full} (full vector) or {trimmed} (without the two end values)"
+    )]
+    WrongKnotCount {
+        count: usize,
+        full: usize,
+        trimmed: usize,
+    },
     #[error("knot {index} is not a finite number")]
     NonFiniteKnot { index: usize },
     #[error("knots must be non-decreasing: knot {index} is smaller than knot {}", index - 1)]
     DecreasingKnot { index: usize },
-    #[error("knot value at index {index} is repeated {multiplicity} times; at most degree + 1 = {max} allowed")]
-    KnotMultiplicityTooHigh { index: usize, multiplicity: usize, max: usize },
+    #[error(
+        "knot value at index {index} is repeated {multiplicity} times; at most degree + 1 = {max} allowed"
+    )]
+    KnotMultiplicityTooHigh {
+        index: usize,
+        multiplicity: usize,
+        max: usize,
+    },
     #[error("the curve's domain [u_p, u_(n+1)] is empty: the knots there are all equal")]
     EmptyDomain,
     #[error("{count} weights given; expected one per control point ({expected})")]
@@ -395,7 +415,10 @@ impl Curve {
 
     /// The parameter domain `[u_p, u_{n+1}]`.
     pub fn domain(&self) -> (f64, f64) {
-        (self.knots[self.degree], self.knots[self.control_points.len()])
+        (
+            self.knots[self.degree],
+            self.knots[self.control_points.len()],
+        )
     }
 
     /// Whether `t` lies in the domain (closed interval).

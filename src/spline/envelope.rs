@@ -25,10 +25,14 @@ pub enum EnvelopeError {
     #[error("knot index {index} is out of range: the knot vector has {len} values")]
     IndexOutOfRange { index: usize, len: usize },
     /// The run touches the domain's end knots `u_p` or `u_{n+1}`; moving it would move the domain.
-    #[error("knot {index} is not an interior knot: its run of equal values reaches the domain's end knots")]
+    #[error(
+        "knot {index} is not an interior knot: its run of equal values reaches the domain's end knots"
+    )]
     NotInterior { index: usize },
     /// The run is too long for an envelope of degree `>= 1`.
-    #[error("knot {index} has multiplicity {multiplicity}; an envelope needs at most degree - 1 = {max}")]
+    #[error(
+        "knot {index} has multiplicity {multiplicity}; an envelope needs at most degree - 1 = {max}"
+    )]
     MultiplicityTooHigh {
         index: usize,
         multiplicity: usize,

@@ -7,7 +7,7 @@
 //! and evaluate with Horner's rule: no allocation and no span search per point beyond a check
 //! of the span used last.
 
-use super::basis::{CAP, basis_derivatives, basis_functions};
+use super::basis::{CAP, basis_derivatives};
 use super::curve::Curve;
 use super::vector::Point;
 
@@ -57,22 +57,7 @@ impl Curve {
     /// The point `s(t)` for a `t` the caller knows to be in the domain (outside it the end
     /// span's polynomial is extrapolated). No allocation.
     pub fn point_unchecked(&self, t: f64) -> Point {
-        let p = self.degree();
-        let span = self.span(t);
-        let mut basis = [0.0; CAP];
-        basis_functions(self.knots(), p, span, t, &mut basis);
-        let mut acc = [0.0; 4];
-        for (r, &n) in basis.iter().enumerate().take(p + 1) {
-            let pw = self.homogeneous()[span - p + r];
-            for c in 0..4 {
-                acc[c] += n * pw[c];
-            }
-        }
-        if self.is_rational() {
-            [acc[0] / acc[3], acc[1] / acc[3], acc[2] / acc[3]]
-        } else {
-            [acc[0], acc[1], acc[2]]
-        }
+        self.point_with_knots(self.knots(), t)
     }
 
     /// `out[k]` := the `k`-th derivative `s^(k)(t)` for `k = 0..out.len()` (`out[0]` is the
@@ -185,7 +170,10 @@ impl<'c> BatchEvaluator<'c> {
         if in_hint {
             hint
         } else {
-            self.starts.partition_point(|&s| s <= t).saturating_sub(1).min(last)
+            self.starts
+                .partition_point(|&s| s <= t)
+                .saturating_sub(1)
+                .min(last)
         }
     }
 
@@ -247,7 +235,11 @@ impl<'c> BatchEvaluator<'c> {
         out: &mut [Point],
     ) -> Result<(), EvalError> {
         let count = parameters.len();
-        assert_eq!(out.len(), (order + 1) * count, "one output slot per parameter and order");
+        assert_eq!(
+            out.len(),
+            (order + 1) * count,
+            "one output slot per parameter and order"
+        );
         let p = self.curve.degree();
         let rational = self.curve.is_rational();
         let mut homogeneous = [[0.0; 4]; CAP];
@@ -292,7 +284,11 @@ fn derivative_quotients(homogeneous_to_p: &[[f64; 4]], out: &mut [Point]) {
     let w0 = homogeneous_to_p[0][3];
     let p = homogeneous_to_p.len() - 1;
     for k in 0..out.len() {
-        let a = if k <= p { homogeneous_to_p[k] } else { [0.0; 4] };
+        let a = if k <= p {
+            homogeneous_to_p[k]
+        } else {
+            [0.0; 4]
+        };
         let mut v = [a[0], a[1], a[2]];
         for i in 1..=k.min(p) {
             let factor = binomial(k, i) * homogeneous_to_p[i][3];

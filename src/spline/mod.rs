@@ -8,6 +8,7 @@ mod basis;
 mod curve;
 mod envelope;
 mod eval;
+mod other_knots;
 pub mod vector;
 
 pub use basis::MAX_DEGREE;

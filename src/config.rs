@@ -1,0 +1,265 @@
+//! Typed service configuration: command-line flags, `KNOTSHAPE_*` environment variables, defaults.
+//!
+//! Every field has a default that just runs (`Config::default()` equals parsing no arguments),
+//! so `cargo run --release` serves on `127.0.0.1:8080`.
+
+use std::fmt;
+use std::net::SocketAddr;
+use std::str::FromStr;
+use std::time::Duration;
+
+use clap::{Parser, ValueEnum};
+
+/// Service configuration. Each flag can also be set by the environment variable named in its
+/// help text; a flag wins over the variable.
+#[derive(Debug, Clone, PartialEq, Parser)]
+#[command(name = "knotshape", version, about)]
+pub struct Config {
+    /// Address and port to listen on (`0.0.0.0:8080` to serve outside the host).
+    #[arg(
+        long,
+        env = "KNOTSHAPE_LISTEN",
+        default_value = "127.0.0.1:8080",
+        global = true
+    )]
+    pub listen: SocketAddr,
+
+    /// API key required as `Authorization: Bearer <key>` on every `/v1` route (none: open).
+    #[arg(long, env = "KNOTSHAPE_API_KEY", hide_env_values = true, global = true)]
+    pub api_key: Option<ApiKey>,
+
+    /// Origins allowed by CORS, comma-separated (e.g. `https://cad.example.com`); none: CORS off.
+    #[arg(
+        long = "cors-allow-origin",
+        env = "KNOTSHAPE_CORS_ALLOW_ORIGINS",
+        value_delimiter = ',',
+        global = true
+    )]
+    pub cors_allow_origins: Vec<String>,
+
+    /// Largest accepted request body in bytes (larger: 413).
+    #[arg(long, env = "KNOTSHAPE_MAX_BODY_BYTES", default_value_t = Limits::DEFAULT.max_body_bytes, global = true)]
+    pub max_body_bytes: usize,
+
+    /// Largest number of control points per curve (more: 422).
+    #[arg(long, env = "KNOTSHAPE_MAX_CONTROL_POINTS", default_value_t = Limits::DEFAULT.max_control_points, global = true)]
+    pub max_control_points: usize,
+
+    /// Largest number of `parameters`, or of `samples`, per evaluate request (more: 422).
+    #[arg(long, env = "KNOTSHAPE_MAX_PARAMETERS", default_value_t = Limits::DEFAULT.max_parameters, global = true)]
+    pub max_parameters: usize,
+
+    /// Highest derivative order per evaluate request (higher: 422).
+    #[arg(long, env = "KNOTSHAPE_MAX_DERIVATIVE_ORDER", default_value_t = Limits::DEFAULT.max_derivative_order, global = true)]
+    pub max_derivative_order: usize,
+
+    /// Largest number of vertices of one region polygon (`/v1/shape/regions`).
+    #[arg(long, env = "KNOTSHAPE_MAX_POLYGON_VERTICES", default_value_t = Limits::DEFAULT.max_polygon_vertices, global = true)]
+    pub max_polygon_vertices: usize,
+
+    /// Time a request may take, in milliseconds, before it is answered with 503.
+    #[arg(
+        long,
+        env = "KNOTSHAPE_REQUEST_TIMEOUT_MS",
+        default_value_t = 10_000,
+        global = true
+    )]
+    pub request_timeout_ms: u64,
+
+    /// Largest number of `/v1` requests served at once; more are shed with 503 + `Retry-After`.
+    #[arg(
+        long,
+        env = "KNOTSHAPE_CONCURRENCY_LIMIT",
+        default_value_t = 64,
+        global = true
+    )]
+    pub concurrency_limit: usize,
+
+    /// Seconds sent in `Retry-After` with a 503.
+    #[arg(
+        long,
+        env = "KNOTSHAPE_RETRY_AFTER_SECS",
+        default_value_t = 1,
+        global = true
+    )]
+    pub retry_after_secs: u64,
+
+    /// On shutdown, milliseconds between readiness turning 503 and the listener closing
+    /// (lets a load balancer notice); in-flight requests always finish.
+    #[arg(
+        long,
+        env = "KNOTSHAPE_DRAIN_DELAY_MS",
+        default_value_t = 0,
+        global = true
+    )]
+    pub drain_delay_ms: u64,
+
+    /// Log format: `human` or `json`.
+    #[arg(long, env = "KNOTSHAPE_LOG_FORMAT", value_enum, default_value_t = LogFormat::Human, global = true)]
+    pub log_format: LogFormat,
+
+    /// Log filter in `tracing` syntax, e.g. `info` or `knotshape=debug,tower_http=info`.
+    #[arg(long, env = "KNOTSHAPE_LOG", default_value = "info", global = true)]
+    pub log_filter: String,
+}
+
+impl Default for Config {
+    fn default() -> Self {
+        Config {
+            listen: SocketAddr::from(([127, 0, 0, 1], 8080)),
+            api_key: None,
+            cors_allow_origins: Vec::new(),
+            max_body_bytes: Limits::DEFAULT.max_body_bytes,
+            max_control_points: Limits::DEFAULT.max_control_points,
+            max_parameters: Limits::DEFAULT.max_parameters,
+            max_derivative_order: Limits::DEFAULT.max_derivative_order,
+            max_polygon_vertices: Limits::DEFAULT.max_polygon_vertices,
+            request_timeout_ms: 10_000,
+            concurrency_limit: 64,
+            retry_after_secs: 1,
+            drain_delay_ms: 0,
+            log_format: LogFormat::Human,
+            log_filter: "info".to_owned(),
+        }
+    }
+}
+
+impl Config {
+    /// The size limits applied to request data.
+    pub fn limits(&self) -> Limits {
+        Limits {
+            max_body_bytes: self.max_body_bytes,
+            max_control_points: self.max_control_points,
+            max_parameters: self.max_parameters,
+            max_derivative_order: self.max_derivative_order,
+            max_polygon_vertices: self.max_polygon_vertices,
+        }
+    }
+
+    /// How long one request may take.
+    pub fn request_timeout(&self) -> Duration {
+        Duration::from_millis(self.request_timeout_ms)
+    }
+
+    /// The pause between readiness turning 503 and the listener closing.
+    pub fn drain_delay(&self) -> Duration {
+        Duration::from_millis(self.drain_delay_ms)
+    }
+}
+
+/// The size limits that bound the work and the output of one request.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Limits {
+    /// Request body size in bytes.
+    pub max_body_bytes: usize,
+    /// Control points per curve.
+    pub max_control_points: usize,
+    /// Parameters (or samples) per evaluate request.
+    pub max_parameters: usize,
+    /// Derivative order per evaluate request.
+    pub max_derivative_order: usize,
+    /// Vertices per region polygon.
+    pub max_polygon_vertices: usize,
+}
+
+impl Limits {
+    /// The defaults: 1 MiB bodies, 10 000 control points, 10 000 parameters, derivatives up to
+    /// order 8, 2 000 vertices per polygon.
+    pub const DEFAULT: Limits = Limits {
+        max_body_bytes: 1024 * 1024,
+        max_control_points: 10_000,
+        max_parameters: 10_000,
+        max_derivative_order: 8,
+        max_polygon_vertices: 2_000,
+    };
+}
+
+impl Default for Limits {
+    fn default() -> Self {
+        Limits::DEFAULT
+    }
+}
+
+/// Log output format.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum LogFormat {
+    /// Readable lines for a terminal.
+    Human,
+    /// One JSON object per line, for log collectors.
+    Json,
+}
+
+/// A non-empty API key; its `Debug` output never shows the key.
+#[derive(Clone, PartialEq, Eq)]
+pub struct ApiKey(String);
+
+impl ApiKey {
+    /// The key's bytes, for a constant-time comparison.
+    pub fn as_bytes(&self) -> &[u8] {
+        self.0.as_bytes()
+    }
+}
+
+impl fmt::Debug for ApiKey {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str("ApiKey(<redacted>)")
+    }
+}
+
+impl FromStr for ApiKey {
+    type Err = String;
+
+    fn from_str(key: &str) -> Result<Self, Self::Err> {
+        let key = key.trim();
+        if key.is_empty() {
+            return Err("the API key must not be empty".to_owned());
+        }
+        if !key.bytes().all(|b| b.is_ascii_graphic()) {
+            return Err("the API key must be printable ASCII without spaces".to_owned());
+        }
+        Ok(ApiKey(key.to_owned()))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn parsing_no_arguments_gives_the_defaults() {
+        let parsed = Config::try_parse_from(["knotshape"]).unwrap();
+        // The environment of the test run may set KNOTSHAPE_* variables; compare only when not.
+        if std::env::vars().all(|(k, _)| !k.starts_with("KNOTSHAPE_")) {
+            assert_eq!(parsed, Config::default());
+        }
+        assert_eq!(Config::default().listen.to_string(), "127.0.0.1:8080");
+    }
+
+    #[test]
+    fn flags_override_defaults() {
+        let parsed = Config::try_parse_from([
+            "knotshape",
+            "--listen",
+            "0.0.0.0:9000",
+            "--api-key",
+            "s3cret",
+            "--cors-allow-origin",
+            "https://a.example,https://b.example",
+            "--max-parameters",
+            "5",
+        ])
+        .unwrap();
+        assert_eq!(parsed.listen.to_string(), "0.0.0.0:9000");
+        assert_eq!(parsed.api_key.as_ref().unwrap().as_bytes(), b"s3cret");
+        assert_eq!(parsed.cors_allow_origins.len(), 2);
+        assert_eq!(parsed.limits().max_parameters, 5);
+    }
+
+    #[test]
+    fn empty_or_spaced_api_keys_are_rejected_and_never_printed() {
+        assert!("".parse::<ApiKey>().is_err());
+        assert!("a b".parse::<ApiKey>().is_err());
+        let key: ApiKey = "topsecret".parse().unwrap();
+        assert!(!format!("{key:?}").contains("topsecret"));
+    }
+}

@@ -1,0 +1,119 @@
+//! The wire form of a curve and its one-time conversion into the core's validated [`Curve`].
+
+use serde::{Deserialize, Serialize};
+use utoipa::ToSchema;
+
+use super::error::{ApiError, FieldError};
+use super::pointer::JsonPointer;
+use crate::spline::{Curve, CurveError, CurveField, CurveLimits, Dimension, Point};
+
+/// A B-spline or NURBS curve as sent and received.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+#[schema(example = json!({
+    "degree": 3,
+    "control_points": [[0, 0], [1, 2], [3, 2], [4, 0], [5, 1]],
+    "knots": [0, 0, 0, 0, 0.5, 1, 1, 1, 1],
+    "weights": [1, 1, 2, 1, 1]
+}))]
+pub struct CurveBody {
+    /// Degree `p >= 1` (order `p + 1`); the shape endpoints need 3.
+    #[schema(minimum = 1, example = 3)]
+    pub degree: usize,
+    /// At least `degree + 1` control points, all 2D (`[x, y]`) or all 3D (`[x, y, z]`).
+    #[schema(example = json!([[0, 0], [1, 2], [3, 2], [4, 0], [5, 1]]))]
+    pub control_points: Vec<Vec<f64>>,
+    /// Non-decreasing knots: the full vector (`control_points + degree + 1` values) or the
+    /// openNURBS/Rhino vector without its two end values (`control_points + degree - 1`),
+    /// detected by length. Answers use the same convention.
+    #[schema(example = json!([0, 0, 0, 0, 0.5, 1, 1, 1, 1]))]
+    pub knots: Vec<f64>,
+    /// Optional weights, one per control point, all `> 0`; absent means non-rational.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schema(example = json!([1, 1, 2, 1, 1]))]
+    pub weights: Option<Vec<f64>>,
+}
+
+impl CurveBody {
+    /// Validates the wire curve into a core [`Curve`]; errors point below `at` (e.g. `/curve`).
+    pub fn parse(&self, limits: &CurveLimits, at: &JsonPointer) -> Result<Curve, ApiError> {
+        Curve::new(
+            self.degree,
+            &self.control_points,
+            &self.knots,
+            self.weights.as_deref(),
+            limits,
+        )
+        .map_err(|error| ApiError::Invalid(vec![curve_field_error(&error, at)]))
+    }
+
+    /// The wire form of a core curve, knots in the curve's (the caller's) convention.
+    pub fn from_curve(curve: &Curve) -> Self {
+        let dimension = curve.dimension();
+        CurveBody {
+            degree: curve.degree(),
+            control_points: curve
+                .control_points()
+                .iter()
+                .map(|&point| point_to_wire(point, dimension))
+                .collect(),
+            knots: curve.knots_in_convention().to_vec(),
+            weights: curve.weights().map(<[f64]>::to_vec),
+        }
+    }
+}
+
+/// The field error for a core curve error, pointing below `at`.
+pub fn curve_field_error(error: &CurveError, at: &JsonPointer) -> FieldError {
+    let pointer = match error.field() {
+        CurveField::Degree => at.clone().push("degree"),
+        CurveField::ControlPoints => at.clone().push("control_points"),
+        CurveField::ControlPoint { index, coordinate } => {
+            let point = at.clone().push("control_points").push(index);
+            match coordinate {
+                Some(coordinate) => point.push(coordinate),
+                None => point,
+            }
+        }
+        CurveField::Knots => at.clone().push("knots"),
+        CurveField::Knot(index) => at.clone().push("knots").push(index),
+        CurveField::Weights => at.clone().push("weights"),
+        CurveField::Weight(index) => at.clone().push("weights").push(index),
+    };
+    FieldError::new(pointer, error.to_string())
+}
+
+/// A core point as `[x, y]` or `[x, y, z]`.
+pub fn point_to_wire(point: Point, dimension: Dimension) -> Vec<f64> {
+    point[..dimension.count()].to_vec()
+}
+
+/// A wire point (`[x, y]` or `[x, y, z]`, matching `dimension`) as a core point; the pointer
+/// names it when its length is wrong or a coordinate is not finite.
+pub fn point_from_wire(
+    coordinates: &[f64],
+    dimension: Dimension,
+    at: &JsonPointer,
+) -> Result<Point, ApiError> {
+    if coordinates.len() != dimension.count() {
+        return Err(ApiError::invalid(
+            at.clone(),
+            format!(
+                "the point has {} coordinates; the curve's control points have {}",
+                coordinates.len(),
+                dimension.count()
+            ),
+        ));
+    }
+    let mut point = [0.0; 3];
+    for (index, (&value, slot)) in coordinates.iter().zip(point.iter_mut()).enumerate() {
+        if !value.is_finite() {
+            return Err(ApiError::invalid(
+                at.clone().push(index),
+                "coordinates must be finite numbers",
+            ));
+        }
+        *slot = value;
+    }
+    Ok(point)
+}

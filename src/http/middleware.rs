@@ -1,0 +1,215 @@
+//! Middleware of the HTTP edge: API key check, admission (load shedding and draining), metrics,
+//! trace spans, problem documents for bare error responses, the panic responder and the
+//! 404/405 fallbacks.
+
+use std::any::Any;
+use std::time::{Duration, Instant};
+
+use axum::body::Body;
+use axum::extract::{MatchedPath, Request, State};
+use axum::http::{HeaderValue, Method, StatusCode, Uri, header};
+use axum::middleware::Next;
+use axum::response::{IntoResponse, Response};
+use subtle::ConstantTimeEq;
+use tower_http::catch_panic::ResponseForPanic;
+use tracing::Span;
+
+use super::error::{ApiError, PROBLEM_JSON, Problem};
+use super::metrics::{Metrics, UNMATCHED_ROUTE};
+use super::state::AppState;
+
+/// Refuses `/v1` requests without the configured API key (401); a no-op when none is set.
+/// The key is compared in constant time.
+pub async fn require_api_key(
+    State(state): State<AppState>,
+    request: Request,
+    next: Next,
+) -> Result<Response, ApiError> {
+    if let Some(expected) = &state.api_key {
+        let presented = request
+            .headers()
+            .get(header::AUTHORIZATION)
+            .and_then(|value| value.to_str().ok())
+            .and_then(bearer_token);
+        let authorized =
+            presented.is_some_and(|token| bool::from(token.as_bytes().ct_eq(expected.as_bytes())));
+        if !authorized {
+            return Err(ApiError::Unauthorized);
+        }
+    }
+    Ok(next.run(request).await)
+}
+
+/// The token of an `Authorization: Bearer <token>` header value (scheme case-insensitive).
+fn bearer_token(value: &str) -> Option<&str> {
+    let (scheme, token) = value.trim().split_once(' ')?;
+    scheme
+        .eq_ignore_ascii_case("bearer")
+        .then(|| token.trim())
+        .filter(|token| !token.is_empty())
+}
+
+/// Admits a `/v1` request only while the service is ready and below its concurrency limit;
+/// otherwise answers 503 with `Retry-After` at once instead of queueing.
+pub async fn admit(
+    State(state): State<AppState>,
+    request: Request,
+    next: Next,
+) -> Result<Response, ApiError> {
+    let retry_after_secs = state.retry_after_secs;
+    if !state.readiness.is_ready() {
+        return Err(ApiError::ShuttingDown { retry_after_secs });
+    }
+    let Ok(_permit) = state.admission.clone().try_acquire_owned() else {
+        return Err(ApiError::Overloaded { retry_after_secs });
+    };
+    Ok(next.run(request).await)
+}
+
+/// Counts the request by method, matched route and status, and observes its latency.
+pub async fn record_metrics(
+    State(metrics): State<Metrics>,
+    request: Request,
+    next: Next,
+) -> Response {
+    let route = matched_route(&request).to_owned();
+    let method = request.method().clone();
+    let _in_flight = metrics.start_request();
+    let started = Instant::now();
+    let response = next.run(request).await;
+    metrics.record(
+        &method,
+        &route,
+        response.status().as_u16(),
+        started.elapsed(),
+    );
+    response
+}
+
+/// The matched route template of a request, or `unmatched`.
+fn matched_route<B>(request: &axum::http::Request<B>) -> &str {
+    request
+        .extensions()
+        .get::<MatchedPath>()
+        .map_or(UNMATCHED_ROUTE, MatchedPath::as_str)
+}
+
+/// The tracing span of one request: method and matched route now, status and latency when
+/// the response is ready.
+pub fn request_span(request: &axum::http::Request<Body>) -> Span {
+    tracing::info_span!(
+        "http_request",
+        method = %request.method(),
+        route = matched_route(request),
+        status = tracing::field::Empty,
+        latency_ms = tracing::field::Empty,
+    )
+}
+
+/// Records status and latency in the request's span and logs the finished request.
+pub fn record_response(response: &Response, latency: Duration, span: &Span) {
+    let status = response.status().as_u16();
+    let latency_ms = latency.as_secs_f64() * 1e3;
+    span.record("status", status);
+    span.record("latency_ms", latency_ms);
+    if response.status().is_server_error() {
+        tracing::warn!(status, latency_ms, "request failed");
+    } else {
+        tracing::info!(status, latency_ms, "request finished");
+    }
+}
+
+/// Seconds sent with `Retry-After` on a 503.
+#[derive(Debug, Clone, Copy)]
+pub struct RetryAfter(pub u64);
+
+/// Turns an error response that is not yet a problem document (the timeout's empty 503, or
+/// any other bare error from a layer) into one, keeping its status and headers.
+pub async fn problem_for_bare_errors<B>(
+    State(RetryAfter(retry_after_secs)): State<RetryAfter>,
+    response: Response<B>,
+) -> Response
+where
+    B: axum::body::HttpBody<Data = axum::body::Bytes> + Send + 'static,
+    B::Error: Into<axum::BoxError>,
+{
+    let status = response.status();
+    if !(status.is_client_error() || status.is_server_error()) {
+        return response.into_response();
+    }
+    let is_problem = response
+        .headers()
+        .get(header::CONTENT_TYPE)
+        .is_some_and(|value| value.as_bytes().starts_with(PROBLEM_JSON.as_bytes()));
+    if is_problem {
+        return response.into_response();
+    }
+    let detail = match status {
+        StatusCode::SERVICE_UNAVAILABLE => {
+            "the request did not complete within the configured time limit"
+        }
+        StatusCode::PAYLOAD_TOO_LARGE => "the request body exceeds the configured limit",
+        _ => "the request could not be served",
+    };
+    let (mut parts, _) = response.into_parts();
+    let mut problem = Problem::for_status(status, detail).into_response();
+    parts.headers.remove(header::CONTENT_LENGTH);
+    parts.headers.remove(header::CONTENT_ENCODING);
+    parts
+        .headers
+        .insert(header::CONTENT_TYPE, HeaderValue::from_static(PROBLEM_JSON));
+    if status == StatusCode::SERVICE_UNAVAILABLE && !parts.headers.contains_key(header::RETRY_AFTER)
+    {
+        parts
+            .headers
+            .insert(header::RETRY_AFTER, HeaderValue::from(retry_after_secs));
+    }
+    *problem.headers_mut() = parts.headers;
+    problem
+}
+
+/// Answers a panic in a handler with a 500 problem document and logs it.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct PanicResponder;
+
+impl ResponseForPanic for PanicResponder {
+    type ResponseBody = Body;
+
+    fn response_for_panic(&mut self, payload: Box<dyn Any + Send + 'static>) -> Response<Body> {
+        let message = payload
+            .downcast_ref::<String>()
+            .map(String::as_str)
+            .or_else(|| payload.downcast_ref::<&str>().copied())
+            .unwrap_or("(no message)");
+        tracing::error!(panic = message, "request handler panicked");
+        ApiError::Internal(message.to_owned()).into_response()
+    }
+}
+
+/// The fallback for paths no route matches: 404.
+pub async fn not_found(uri: Uri) -> ApiError {
+    ApiError::NotFound {
+        path: uri.path().to_owned(),
+    }
+}
+
+/// The fallback for a known path with a method it does not serve: 405 (axum adds `Allow`).
+pub async fn method_not_allowed(method: Method) -> ApiError {
+    ApiError::MethodNotAllowed {
+        method: method.to_string(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bearer_tokens_are_parsed() {
+        assert_eq!(bearer_token("Bearer abc"), Some("abc"));
+        assert_eq!(bearer_token("bearer   abc "), Some("abc"));
+        assert_eq!(bearer_token("Basic abc"), None);
+        assert_eq!(bearer_token("Bearer "), None);
+        assert_eq!(bearer_token("abc"), None);
+    }
+}

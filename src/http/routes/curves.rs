@@ -1,0 +1,333 @@
+//! `POST /v1/curves/evaluate` and `POST /v1/curves/envelope`.
+
+use axum::extract::State;
+use serde::{Deserialize, Serialize};
+use utoipa::ToSchema;
+
+use super::compute;
+use crate::config::Limits;
+use crate::http::curve::{CurveBody, point_to_wire};
+use crate::http::error::{ApiError, FieldError, Problem};
+use crate::http::extract::ApiJson;
+use crate::http::pointer::JsonPointer;
+use crate::http::state::AppState;
+use crate::spline::{BatchEvaluator, Curve, CurveLimits, EnvelopeError, Point};
+
+/// Largest number of out-of-domain parameters listed in one 422.
+const MAX_LISTED_PARAMETER_ERRORS: usize = 20;
+
+/// Points (and derivatives) of a curve at given parameters or at uniform samples.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+#[schema(example = json!({
+    "curve": {"degree": 3, "control_points": [[0, 0], [1, 2], [3, 2], [4, 0], [5, 1]], "knots": [0, 0, 0, 0, 0.5, 1, 1, 1, 1]},
+    "parameters": [0, 0.25, 0.5, 1],
+    "derivatives": 1
+}))]
+pub struct EvaluateRequest {
+    /// The curve.
+    pub curve: CurveBody,
+    /// Parameters inside the domain, in any order. Exactly one of `parameters` and `samples`.
+    #[serde(default)]
+    #[schema(example = json!([0, 0.25, 0.5, 1]))]
+    pub parameters: Option<Vec<f64>>,
+    /// Number of parameters (>= 2) spread uniformly over the whole domain, both ends included.
+    /// Exactly one of `parameters` and `samples`.
+    #[serde(default)]
+    #[schema(minimum = 2, example = 11)]
+    pub samples: Option<usize>,
+    /// Highest derivative order to return (0: points only).
+    #[serde(default)]
+    #[schema(minimum = 0, example = 1)]
+    pub derivatives: usize,
+}
+
+/// The evaluated points.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+#[schema(example = json!({
+    "domain": [0, 1],
+    "parameters": [0, 1],
+    "points": [[0, 0], [5, 1]],
+    "derivatives": [[[6, 12], [6, 6]]]
+}))]
+pub struct EvaluateResponse {
+    /// The parameter domain `[lo, hi]`.
+    pub domain: [f64; 2],
+    /// The parameters evaluated (the given ones, or the uniform samples).
+    pub parameters: Vec<f64>,
+    /// `points[i]` is the curve point at `parameters[i]`.
+    pub points: Vec<Vec<f64>>,
+    /// Present when `derivatives > 0`: `derivatives[d-1][i]` is the d-th derivative at
+    /// `parameters[i]`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub derivatives: Option<Vec<Vec<Vec<f64>>>>,
+}
+
+/// Evaluate a curve.
+///
+/// Points, and derivatives up to `derivatives`, at the given `parameters` or at `samples`
+/// uniform parameters over the whole domain.
+#[utoipa::path(
+    post,
+    path = "/v1/curves/evaluate",
+    tag = "curves",
+    request_body = EvaluateRequest,
+    responses(
+        (status = 200, description = "Points (and derivatives) of the curve", body = EvaluateResponse),
+        (status = 400, description = "Malformed JSON, wrong types, unknown fields", body = Problem, content_type = "application/problem+json"),
+        (status = 422, description = "A rule is broken (see `errors`)", body = Problem, content_type = "application/problem+json"),
+    ),
+    security((), ("api_key" = [])),
+)]
+pub async fn evaluate(
+    State(state): State<AppState>,
+    ApiJson(request): ApiJson<EvaluateRequest>,
+) -> Result<ApiJson<EvaluateResponse>, ApiError> {
+    let (limits, curve_limits) = (state.limits, state.curve_limits);
+    compute(move || evaluate_request(&request, &limits, &curve_limits))
+        .await
+        .map(ApiJson)
+}
+
+/// Where the parameters come from, once validated.
+enum ParameterSource<'a> {
+    Given(&'a [f64]),
+    Uniform(usize),
+}
+
+fn evaluate_request(
+    request: &EvaluateRequest,
+    limits: &Limits,
+    curve_limits: &CurveLimits,
+) -> Result<EvaluateResponse, ApiError> {
+    let mut errors = Vec::new();
+    let curve = match request
+        .curve
+        .parse(curve_limits, &JsonPointer::from("/curve"))
+    {
+        Ok(curve) => Some(curve),
+        Err(ApiError::Invalid(curve_errors)) => {
+            errors.extend(curve_errors);
+            None
+        }
+        Err(other) => return Err(other),
+    };
+    let source = match (&request.parameters, request.samples) {
+        (Some(_), Some(_)) => {
+            errors.push(FieldError::new(
+                "/samples",
+                "give either `parameters` or `samples`, not both",
+            ));
+            None
+        }
+        (None, None) => {
+            errors.push(FieldError::new(
+                "",
+                "give either `parameters` (a list) or `samples` (a count)",
+            ));
+            None
+        }
+        (Some(parameters), None) if parameters.len() > limits.max_parameters => {
+            errors.push(FieldError::new(
+                "/parameters",
+                format!(
+                    "{} parameters exceed the limit of {}",
+                    parameters.len(),
+                    limits.max_parameters
+                ),
+            ));
+            None
+        }
+        (Some(parameters), None) => Some(ParameterSource::Given(parameters)),
+        (None, Some(samples)) if samples < 2 => {
+            errors.push(FieldError::new("/samples", "`samples` must be at least 2"));
+            None
+        }
+        (None, Some(samples)) if samples > limits.max_parameters => {
+            errors.push(FieldError::new(
+                "/samples",
+                format!(
+                    "{samples} samples exceed the limit of {}",
+                    limits.max_parameters
+                ),
+            ));
+            None
+        }
+        (None, Some(samples)) => Some(ParameterSource::Uniform(samples)),
+    };
+    if request.derivatives > limits.max_derivative_order {
+        errors.push(FieldError::new(
+            "/derivatives",
+            format!(
+                "derivative order {} exceeds the limit of {}",
+                request.derivatives, limits.max_derivative_order
+            ),
+        ));
+    }
+    let (Some(curve), Some(source), true) = (curve, source, errors.is_empty()) else {
+        return Err(ApiError::Invalid(errors));
+    };
+    let parameters: Vec<f64> = match source {
+        ParameterSource::Given(parameters) => {
+            check_in_domain(&curve, parameters)?;
+            parameters.to_vec()
+        }
+        ParameterSource::Uniform(count) => curve.uniform_parameters(count).collect(),
+    };
+    evaluate_at(&curve, parameters, request.derivatives)
+}
+
+/// 422 listing (up to a bound) every parameter outside the domain.
+fn check_in_domain(curve: &Curve, parameters: &[f64]) -> Result<(), ApiError> {
+    let (lo, hi) = curve.domain();
+    let errors: Vec<FieldError> = parameters
+        .iter()
+        .enumerate()
+        .filter(|(_, t)| !curve.contains_parameter(**t))
+        .take(MAX_LISTED_PARAMETER_ERRORS)
+        .map(|(index, t)| {
+            FieldError::new(
+                JsonPointer::from("/parameters").push(index),
+                format!("parameter {t} lies outside the domain [{lo}, {hi}]"),
+            )
+        })
+        .collect();
+    if errors.is_empty() {
+        Ok(())
+    } else {
+        Err(ApiError::Invalid(errors))
+    }
+}
+
+/// Evaluates validated, in-domain parameters.
+fn evaluate_at(
+    curve: &Curve,
+    parameters: Vec<f64>,
+    order: usize,
+) -> Result<EvaluateResponse, ApiError> {
+    let count = parameters.len();
+    let evaluator = BatchEvaluator::new(curve);
+    let mut values: Vec<Point> = vec![[0.0; 3]; count * (order + 1)];
+    let evaluated = if order == 0 {
+        evaluator.points_into(&parameters, &mut values)
+    } else {
+        evaluator.derivatives_into(&parameters, order, &mut values)
+    };
+    evaluated.map_err(|error| {
+        ApiError::Internal(format!("validated parameters failed to evaluate: {error}"))
+    })?;
+    if values.iter().flatten().any(|value| !value.is_finite()) {
+        return Err(ApiError::invalid(
+            "/curve/control_points",
+            "the result overflows the range of doubles; scale the control points down",
+        ));
+    }
+    let dimension = curve.dimension();
+    let mut rows = values
+        .chunks(count.max(1))
+        .map(|row| row.iter().map(|&p| point_to_wire(p, dimension)).collect());
+    let points = if count == 0 {
+        Vec::new()
+    } else {
+        rows.next().unwrap_or_default()
+    };
+    let derivatives = (order > 0).then(|| {
+        if count == 0 {
+            vec![Vec::new(); order]
+        } else {
+            rows.collect()
+        }
+    });
+    let (lo, hi) = curve.domain();
+    Ok(EvaluateResponse {
+        domain: [lo, hi],
+        parameters,
+        points,
+        derivatives,
+    })
+}
+
+/// The knot whose run of equal knots is moved.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+#[schema(example = json!({
+    "curve": {"degree": 3, "control_points": [[0, 0], [1, 2], [3, 2], [4, 0], [5, 1]], "knots": [0, 0, 0, 0, 0.5, 1, 1, 1, 1]},
+    "knot_index": 4
+}))]
+pub struct EnvelopeRequest {
+    /// The curve.
+    pub curve: CurveBody,
+    /// Index (caller's convention) of an interior knot; its whole run of equal knots moves.
+    #[schema(example = 4)]
+    pub knot_index: usize,
+}
+
+/// The envelope of the family of curves made by moving the run.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+#[schema(example = json!({
+    "multiplicity": 1,
+    "range": [0, 1],
+    "moved_knots": [4],
+    "envelope": {"degree": 2, "control_points": [[0, 0], [1, 2], [3, 2], [4, 0], [5, 1]], "knots": [0, 0, 0, 0, 1, 1, 1, 1]}
+}))]
+pub struct EnvelopeResponse {
+    /// Number `m` of equal knots moved together (`m <= degree - 1`).
+    pub multiplicity: usize,
+    /// `[lo, hi]`: the values the moved knots may take.
+    pub range: [f64; 2],
+    /// Indices (caller's convention) of the moved knots.
+    pub moved_knots: Vec<usize>,
+    /// The envelope: degree `degree - m`, same control points and weights, the knot vector
+    /// without the moved run (caller's convention).
+    pub envelope: CurveBody,
+}
+
+/// Envelope of moving one knot.
+///
+/// The family of curves made by moving the run of equal knots that holds `knot_index` has an
+/// envelope: the B-spline of degree `p - m` with the same control points and the knot vector
+/// without the run (MATH.md §2).
+#[utoipa::path(
+    post,
+    path = "/v1/curves/envelope",
+    tag = "curves",
+    request_body = EnvelopeRequest,
+    responses(
+        (status = 200, description = "The envelope curve", body = EnvelopeResponse),
+        (status = 400, description = "Malformed JSON, wrong types, unknown fields", body = Problem, content_type = "application/problem+json"),
+        (status = 422, description = "A rule is broken (see `errors`)", body = Problem, content_type = "application/problem+json"),
+    ),
+    security((), ("api_key" = [])),
+)]
+pub async fn envelope(
+    State(state): State<AppState>,
+    ApiJson(request): ApiJson<EnvelopeRequest>,
+) -> Result<ApiJson<EnvelopeResponse>, ApiError> {
+    let curve_limits = state.curve_limits;
+    compute(move || envelope_request(&request, &curve_limits))
+        .await
+        .map(ApiJson)
+}
+
+fn envelope_request(
+    request: &EnvelopeRequest,
+    curve_limits: &CurveLimits,
+) -> Result<EnvelopeResponse, ApiError> {
+    let curve = request
+        .curve
+        .parse(curve_limits, &JsonPointer::from("/curve"))?;
+    let run = curve
+        .knot_run(request.knot_index)
+        .map_err(|error: EnvelopeError| ApiError::invalid("/knot_index", error.to_string()))?;
+    let envelope = curve.envelope(&run);
+    let full_len = curve.knots().len();
+    let moved_knots = (run.start..run.start + run.multiplicity)
+        .filter_map(|full| curve.convention().caller_index(full, full_len))
+        .collect();
+    Ok(EnvelopeResponse {
+        multiplicity: run.multiplicity,
+        range: [run.range.0, run.range.1],
+        moved_knots,
+        envelope: CurveBody::from_curve(&envelope),
+    })
+}

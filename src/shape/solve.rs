@@ -1,0 +1,400 @@
+//! The knot-pair solver: new knot vectors that move the curve point `s(t)` to a target
+//! (MATH.md §3–5), and region membership through the very same code path.
+
+use super::candidate::{Candidate, Side, SideChoice, candidate, triangle_size};
+use super::pairs::{KnotPair, LocalKnots, solve_pair};
+use crate::spline::vector::{Point, distance};
+use crate::spline::{Curve, Dimension, EvalError};
+
+/// Number of uniform samples of the changed interval in the deviation estimate; the best one
+/// is then refined by golden-section search ([`DEVIATION_REFINEMENT_STEPS`] steps).
+pub const DEVIATION_SAMPLES: usize = 48;
+
+/// Golden-section steps that refine the deviation's best sample (each shrinks the bracket by
+/// 0.618).
+pub const DEVIATION_REFINEMENT_STEPS: usize = 24;
+
+/// Why a shape request cannot be answered.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ShapeError {
+    /// The method is for cubic curves only.
+    #[error("the knot-pair method needs a cubic curve (degree 3), not degree {degree}")]
+    NotCubic { degree: usize },
+    /// The picked parameter is not finite or not in the domain.
+    #[error(transparent)]
+    Parameter(EvalError),
+    /// The target has the wrong number of coordinates.
+    #[error("the target has {found} coordinates; the curve's control points have {expected}")]
+    TargetDimension { expected: usize, found: usize },
+    /// A target coordinate is not finite.
+    #[error("target coordinate {coordinate} is not a finite number")]
+    NonFiniteTarget { coordinate: usize },
+}
+
+/// The request element a [`ShapeError`] is about.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ShapeField {
+    /// The curve's degree.
+    Degree,
+    /// The picked parameter.
+    Parameter,
+    /// The target as a whole.
+    Target,
+    /// One target coordinate.
+    TargetCoordinate(usize),
+}
+
+impl ShapeError {
+    /// The element of the request that is at fault.
+    pub fn field(&self) -> ShapeField {
+        match *self {
+            ShapeError::NotCubic { .. } => ShapeField::Degree,
+            ShapeError::Parameter(_) => ShapeField::Parameter,
+            ShapeError::TargetDimension { .. } => ShapeField::Target,
+            ShapeError::NonFiniteTarget { coordinate } => ShapeField::TargetCoordinate(coordinate),
+        }
+    }
+}
+
+/// What a shape request asks about: a cubic curve, the picked parameter `t`, the sides and
+/// knot pairs to try, and whether the curve's domain must stay put.
+#[derive(Debug, Clone, Copy)]
+pub struct ShapeQuery<'a> {
+    /// The cubic curve.
+    pub curve: &'a Curve,
+    /// The picked parameter `t` (the point `s(t)` moves).
+    pub parameter: f64,
+    /// Which knot(s) next to `t` may move to `t`.
+    pub side: SideChoice,
+    /// The knot pairs to try.
+    pub pairs: &'a [KnotPair],
+    /// Drop solutions that change `u_{k-1}` or `u_{n+1}` (MATH.md "Keeping the curve's domain").
+    pub keep_domain: bool,
+}
+
+impl<'a> ShapeQuery<'a> {
+    /// All sides, all six pairs, domain kept: the API's defaults.
+    pub fn new(curve: &'a Curve, parameter: f64) -> Self {
+        ShapeQuery {
+            curve,
+            parameter,
+            side: SideChoice::Both,
+            pairs: &KnotPair::ALL,
+            keep_domain: true,
+        }
+    }
+
+    /// Checks that the curve is cubic and `t` is finite and in the domain.
+    pub(crate) fn validate(&self) -> Result<(), ShapeError> {
+        if self.curve.degree() != 3 {
+            return Err(ShapeError::NotCubic {
+                degree: self.curve.degree(),
+            });
+        }
+        let t = self.parameter;
+        if !t.is_finite() {
+            return Err(ShapeError::Parameter(EvalError::NonFiniteParameter {
+                index: 0,
+            }));
+        }
+        if !self.curve.contains_parameter(t) {
+            return Err(ShapeError::Parameter(EvalError::OutsideDomain {
+                index: 0,
+                value: t,
+                domain: self.curve.domain(),
+            }));
+        }
+        Ok(())
+    }
+
+    /// The candidates of the requested sides (with the target's frames when given).
+    pub fn candidates(&self, target: Option<Point>) -> Result<Vec<Candidate>, ShapeError> {
+        self.validate()?;
+        Ok(self
+            .side
+            .sides()
+            .iter()
+            .map(|&side| candidate(self.curve, self.parameter, side, target))
+            .collect())
+    }
+}
+
+/// Reads a target of the curve's dimension into a point (`z = 0` for 2D).
+pub fn target_point(curve: &Curve, target: &[f64]) -> Result<Point, ShapeError> {
+    let expected = curve.dimension().count();
+    if target.len() != expected {
+        return Err(ShapeError::TargetDimension {
+            expected,
+            found: target.len(),
+        });
+    }
+    if let Some(coordinate) = target.iter().position(|v| !v.is_finite()) {
+        return Err(ShapeError::NonFiniteTarget { coordinate });
+    }
+    let mut point = [0.0; 3];
+    point[..expected].copy_from_slice(target);
+    if curve.dimension() == Dimension::Two {
+        point[2] = 0.0;
+    }
+    Ok(point)
+}
+
+/// One way to move `s(t)` onto the target.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Solution {
+    /// The knot pair (region) that reached the target.
+    pub pair: KnotPair,
+    /// Which knot moved to `t`.
+    pub side: Side,
+    /// The span `j`.
+    pub span: usize,
+    /// Full-vector index of the knot set to `t`.
+    pub moved_knot: usize,
+    /// Full-vector indices whose values changed, ascending.
+    pub changed_knots: Vec<usize>,
+    /// The whole new full knot vector.
+    pub knots: Vec<f64>,
+    /// The new curve's point at `t`.
+    pub point: Point,
+    /// `|point - target|`.
+    pub residual: f64,
+    /// `[lo, hi]`: outside it the new curve equals the old one.
+    pub affected_domain: (f64, f64),
+    /// Largest `|s_old(u) - s_new(u)|` over the domain, when measured.
+    pub max_deviation: Option<f64>,
+}
+
+/// Whether a pair of a candidate holds the target.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RegionMembership {
+    /// The pair.
+    pub pair: KnotPair,
+    /// Full-vector indices of the pair's two knots.
+    pub knots: [usize; 2],
+    /// Whether the pair has a (kept) solution: the target lies in `Ω_r`.
+    pub contains: bool,
+}
+
+/// A candidate with the membership of each requested pair.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CandidateOutcome {
+    /// The side's candidate.
+    pub candidate: Candidate,
+    /// One entry per requested pair (empty when the side does not apply).
+    pub regions: Vec<RegionMembership>,
+}
+
+/// The answer to a shape request.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SolveOutcome {
+    /// One entry per requested side.
+    pub candidates: Vec<CandidateOutcome>,
+    /// Every kept solution, sorted by `max_deviation` (smallest first) when measured.
+    pub solutions: Vec<Solution>,
+}
+
+impl SolveOutcome {
+    /// Whether any region of any candidate holds the target.
+    pub fn reachable(&self) -> bool {
+        !self.solutions.is_empty()
+    }
+}
+
+/// Options of [`solve`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SolveOptions {
+    /// Measure each solution's `max_deviation` (and sort by it).
+    pub measure_deviation: bool,
+}
+
+/// Solves `s(t) → target` for every requested side and knot pair (MATH.md §3).
+///
+/// Per applicable candidate `j`: the new knots are `u_{j+1} := t` plus the pair's two
+/// unknowns from [`solve_pair`]. A solution is dropped when `keep_domain` is set and it
+/// changes `u_3` or `u_{n+1}`. Each solution is evaluated with the spline core at `t`.
+/// Membership (`contains`) is "this pair kept a solution", so it can never disagree with the
+/// solutions.
+pub fn solve(
+    query: &ShapeQuery,
+    target: &[f64],
+    options: SolveOptions,
+) -> Result<SolveOutcome, ShapeError> {
+    query.validate()?;
+    let curve = query.curve;
+    let target = target_point(curve, target)?;
+    let t = query.parameter;
+    let knots = curve.knots();
+    let n = curve.control_points().len() - 1;
+    let mut candidates = Vec::with_capacity(2);
+    let mut solutions = Vec::new();
+    for &side in query.side.sides() {
+        let candidate = candidate(curve, t, side, Some(target));
+        let (Some(frame), Some(triangle)) = (candidate.frame, candidate.triangle) else {
+            candidates.push(CandidateOutcome {
+                candidate,
+                regions: Vec::new(),
+            });
+            continue;
+        };
+        let j = candidate.span;
+        let local = LocalKnots::from_full(knots, j, t);
+        let mut regions = Vec::with_capacity(query.pairs.len());
+        for &pair in query.pairs {
+            let [first, second] = pair.unknowns();
+            let mut contains = false;
+            let (roots, count) = solve_pair(pair, &local, frame.x, frame.y);
+            for &[a, b, c, e] in &roots[..count] {
+                let mut new_knots = knots.to_vec();
+                new_knots[j - 1] = a;
+                new_knots[j] = b;
+                new_knots[j + 1] = t;
+                new_knots[j + 2] = c;
+                new_knots[j + 3] = e;
+                if query.keep_domain
+                    && (new_knots[3] != knots[3] || new_knots[n + 1] != knots[n + 1])
+                {
+                    continue;
+                }
+                let domain_ok = new_knots[3] < new_knots[n + 1];
+                if !domain_ok || !new_knots[3..=n + 1].iter().all(|&u| u.is_finite()) {
+                    continue;
+                }
+                let changed_knots: Vec<usize> = (0..knots.len())
+                    .filter(|&i| new_knots[i] != knots[i])
+                    .collect();
+                let point = curve.point_with_knots(&new_knots, t);
+                let residual = distance(point, target);
+                if residual.is_nan() || residual > RESIDUAL_SAFEGUARD * triangle_size(&triangle) {
+                    continue;
+                }
+                let affected_domain = affected_domain(curve, &new_knots, &changed_knots);
+                let max_deviation = options
+                    .measure_deviation
+                    .then(|| max_deviation(curve, &new_knots, affected_domain));
+                contains = true;
+                solutions.push(Solution {
+                    pair,
+                    side,
+                    span: j,
+                    moved_knot: j + 1,
+                    changed_knots,
+                    knots: new_knots,
+                    point,
+                    residual,
+                    affected_domain,
+                    max_deviation,
+                });
+            }
+            regions.push(RegionMembership {
+                pair,
+                knots: [first.full_index(j), second.full_index(j)],
+                contains,
+            });
+        }
+        candidates.push(CandidateOutcome { candidate, regions });
+    }
+    if options.measure_deviation {
+        solutions.sort_by(|p, q| {
+            let key = |s: &Solution| s.max_deviation.unwrap_or(f64::INFINITY);
+            key(p).total_cmp(&key(q))
+        });
+    }
+    Ok(SolveOutcome {
+        candidates,
+        solutions,
+    })
+}
+
+/// A numerical safeguard, not the accuracy: a closed-form root whose re-evaluated point misses
+/// the target by more than `RESIDUAL_SAFEGUARD · size` of the triangle is discarded as
+/// ill-conditioned. (Tests hold solutions to 1e-9.)
+pub const RESIDUAL_SAFEGUARD: f64 = 1e-6;
+
+/// Membership of the target in every requested region of every requested side: [`solve`]
+/// without the deviation measure.
+pub fn membership(query: &ShapeQuery, target: &[f64]) -> Result<SolveOutcome, ShapeError> {
+    solve(
+        query,
+        target,
+        SolveOptions {
+            measure_deviation: false,
+        },
+    )
+}
+
+/// `[lo, hi]` outside which the curve with `new_knots` equals `curve`.
+///
+/// On span `r` a degree-`p` curve depends on the knots `u_{r-p+1} ..= u_{r+p}` only, so
+/// changing the indices `qmin ..= qmax` can change the curve only on
+/// `[u_{qmin-p}, u_{qmax+p}]` (indices clipped to the domain's `p ..= n+1`; the wider of the
+/// old and new value at each end).
+pub fn affected_domain(curve: &Curve, new_knots: &[f64], changed_knots: &[usize]) -> (f64, f64) {
+    let old = curve.knots();
+    let p = curve.degree();
+    let n = curve.control_points().len() - 1;
+    let (Some(&qmin), Some(&qmax)) = (changed_knots.first(), changed_knots.last()) else {
+        return (old[p], old[p]);
+    };
+    let lo_index = qmin.saturating_sub(p).clamp(p, n + 1);
+    let hi_index = (qmax + p).clamp(p, n + 1);
+    (
+        old[lo_index].min(new_knots[lo_index]),
+        old[hi_index].max(new_knots[hi_index]),
+    )
+}
+
+/// Largest distance `|s_old(u) - s_new(u)|` for `u` in `interval` (outside it the two curves
+/// agree) and in both curves' domains: [`DEVIATION_SAMPLES`] uniform samples, then golden-section refinement around the
+/// best one. An estimate from below whose error is that of the refinement when the maximum
+/// lies in the bracket of the best sample.
+pub fn max_deviation(curve: &Curve, new_knots: &[f64], interval: (f64, f64)) -> f64 {
+    let old_knots = curve.knots();
+    let (p, end) = (curve.degree(), curve.control_points().len());
+    // Both curves are defined on the intersection of their domains.
+    let lo = interval.0.max(old_knots[p]).max(new_knots[p]);
+    let hi = interval.1.min(old_knots[end]).min(new_knots[end]);
+    if hi <= lo {
+        return 0.0;
+    }
+    let gap = |u: f64| {
+        distance(
+            curve.point_with_knots(old_knots, u),
+            curve.point_with_knots(new_knots, u),
+        )
+    };
+    let step = (hi - lo) / DEVIATION_SAMPLES as f64;
+    let mut best = (lo, gap(lo));
+    for i in 1..=DEVIATION_SAMPLES {
+        let u = if i == DEVIATION_SAMPLES {
+            hi
+        } else {
+            lo + step * i as f64
+        };
+        let d = gap(u);
+        if d > best.1 {
+            best = (u, d);
+        }
+    }
+    // Golden-section search for the maximum in [best - step, best + step] ∩ [lo, hi].
+    let ratio = 0.5 * (5f64.sqrt() - 1.0);
+    let (mut left, mut right) = ((best.0 - step).max(lo), (best.0 + step).min(hi));
+    let mut inner_left = right - ratio * (right - left);
+    let mut inner_right = left + ratio * (right - left);
+    let (mut gap_left, mut gap_right) = (gap(inner_left), gap(inner_right));
+    for _ in 0..DEVIATION_REFINEMENT_STEPS {
+        if gap_left > gap_right {
+            right = inner_right;
+            inner_right = inner_left;
+            gap_right = gap_left;
+            inner_left = right - ratio * (right - left);
+            gap_left = gap(inner_left);
+        } else {
+            left = inner_left;
+            inner_left = inner_right;
+            gap_left = gap_right;
+            inner_right = left + ratio * (right - left);
+            gap_right = gap(inner_right);
+        }
+    }
+    best.1.max(gap_left).max(gap_right)
+}
