@@ -1,4 +1,4 @@
-//! The shipping artefacts (`deploy/kubernetes/*.yaml`, `Dockerfile`, `.dockerignore`) agree with the service's real routes and configuration.
+//! The shipping artefacts (Kubernetes manifests, Dockerfile, .dockerignore) agree with the real service.
 //!
 //! Every YAML document under `deploy/kubernetes/` is parsed; the container's
 //! `KNOTSHAPE_*` environment is turned into a [`Config`] through the real clap
@@ -185,7 +185,9 @@ fn dockerfile_instructions() -> Vec<(String, String)> {
             continue;
         }
         current.push_str(trimmed);
-        let (op, rest) = current.split_once(char::is_whitespace).unwrap_or((&current, ""));
+        let (op, rest) = current
+            .split_once(char::is_whitespace)
+            .unwrap_or((&current, ""));
         out.push((op.to_ascii_uppercase(), rest.trim().to_owned()));
         current.clear();
     }
@@ -410,7 +412,10 @@ fn service_targets_the_named_container_port_of_the_deployments_pods() {
     let config = config_from_env(&c.env);
     let pod_labels = labels(deployment, "spec.template.metadata.labels");
     assert!(
-        selects(&labels(deployment, "spec.selector.matchLabels"), &pod_labels),
+        selects(
+            &labels(deployment, "spec.selector.matchLabels"),
+            &pod_labels
+        ),
         "the Deployment's selector must match its own pod template"
     );
 
@@ -449,9 +454,11 @@ fn hpa_and_pdb_cover_the_deployments_pods() {
     );
     let metrics = at(hpa, "spec.metrics").as_sequence().unwrap();
     assert!(
-        metrics.iter().any(|m| m["type"].as_str() == Some("Resource")
-            && m["resource"]["name"].as_str() == Some("cpu")
-            && m["resource"]["target"]["type"].as_str() == Some("Utilization")),
+        metrics
+            .iter()
+            .any(|m| m["type"].as_str() == Some("Resource")
+                && m["resource"]["name"].as_str() == Some("cpu")
+                && m["resource"]["target"]["type"].as_str() == Some("Utilization")),
         "the HPA scales on CPU utilisation"
     );
     // Utilisation is measured against the request: it must be set.
@@ -524,7 +531,9 @@ fn grace_period_outlasts_prestop_plus_the_services_drain() {
     let drain = drain_timeout(&config);
     let pre_stop = c.container["lifecycle"]["preStop"]["sleep"]["seconds"]
         .as_i64()
-        .map_or(Duration::ZERO, |s| Duration::from_secs(s.try_into().unwrap()));
+        .map_or(Duration::ZERO, |s| {
+            Duration::from_secs(s.try_into().unwrap())
+        });
     let grace = Duration::from_secs(
         i64_at(c.pod_spec, "terminationGracePeriodSeconds")
             .try_into()
@@ -565,7 +574,11 @@ fn dockerfile_listens_and_exposes_the_same_port_as_the_deployment() {
         .flat_map(|(_, rest)| rest.split_whitespace())
         .map(|p| p.trim_end_matches("/tcp").parse().unwrap())
         .collect();
-    assert_eq!(exposed, [config.listen.port()], "EXPOSE vs KNOTSHAPE_LISTEN");
+    assert_eq!(
+        exposed,
+        [config.listen.port()],
+        "EXPOSE vs KNOTSHAPE_LISTEN"
+    );
 
     let docs = load_docs(Path::new(MANIFEST_DIR));
     let c = the_container(&one(&docs, "Deployment").value);
@@ -586,12 +599,10 @@ fn dockerfile_uid() -> u32 {
         .map(|(_, rest)| rest)
         .collect();
     let user = users.last().expect("the runtime stage sets USER");
-    let uid: u32 = user
-        .split(':')
-        .next()
-        .unwrap()
-        .parse()
-        .unwrap_or_else(|_| panic!("USER must be numeric (runAsNonRoot checks it), got {user}"));
+    let uid: u32 =
+        user.split(':').next().unwrap().parse().unwrap_or_else(|_| {
+            panic!("USER must be numeric (runAsNonRoot checks it), got {user}")
+        });
     assert_ne!(uid, 0, "USER must not be root");
     uid
 }
@@ -623,7 +634,10 @@ fn dockerfile_runs_as_numeric_non_root_with_exec_form_entrypoint() {
         .filter(|l| !l.is_empty() && !l.starts_with('#'))
         .collect();
     for needed in [".git", "**/target"] {
-        assert!(patterns.contains(&needed), ".dockerignore must exclude {needed}");
+        assert!(
+            patterns.contains(&needed),
+            ".dockerignore must exclude {needed}"
+        );
     }
     for kept in ["src", "Cargo.toml", "Cargo.lock", "*", "*.rs", "*.toml"] {
         assert!(!patterns.contains(&kept), ".dockerignore must keep {kept}");
