@@ -53,7 +53,8 @@ pub struct Config {
     #[arg(long, env = "KNOTSHAPE_MAX_DERIVATIVE_ORDER", default_value_t = Limits::DEFAULT.max_derivative_order, global = true)]
     pub max_derivative_order: usize,
 
-    /// Largest number of vertices of one region polygon (`/v1/shape/regions`).
+    /// Largest number of vertices of one region polygon (`/v1/shape/regions`); values below
+    /// 128 act as 128.
     #[arg(long, env = "KNOTSHAPE_MAX_POLYGON_VERTICES", default_value_t = Limits::DEFAULT.max_polygon_vertices, global = true)]
     pub max_polygon_vertices: usize,
 

@@ -278,6 +278,10 @@ fn from_serde_error(
                     "numbers must be finite: this one is too large for a double",
                 );
             }
+            if message.starts_with("unknown variant") {
+                // A string of the right type that names no allowed value breaks a rule.
+                return ApiError::invalid(pointer, message);
+            }
             return ApiError::MalformedBody {
                 detail: message.clone(),
                 errors: vec![FieldError {

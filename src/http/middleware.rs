@@ -203,6 +203,51 @@ pub async fn method_not_allowed(method: Method) -> ApiError {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use axum::Router;
+    use axum::routing::get;
+    use tower::ServiceExt;
+
+    async fn body_json(response: Response) -> serde_json::Value {
+        let bytes = axum::body::to_bytes(response.into_body(), 1 << 20)
+            .await
+            .unwrap();
+        serde_json::from_slice(&bytes).unwrap()
+    }
+
+    #[tokio::test]
+    async fn a_panicking_handler_is_answered_with_a_500_problem() {
+        async fn explode() -> &'static str {
+            panic!("boom")
+        }
+        let router = Router::new().route("/explode", get(explode)).layer(
+            tower_http::catch_panic::CatchPanicLayer::custom(PanicResponder),
+        );
+        let request = axum::http::Request::get("/explode")
+            .body(Body::empty())
+            .unwrap();
+        let response = router.oneshot(request).await.unwrap();
+        assert_eq!(response.status(), StatusCode::INTERNAL_SERVER_ERROR);
+        assert_eq!(response.headers()[header::CONTENT_TYPE], PROBLEM_JSON);
+        let body = body_json(response.into_response()).await;
+        assert_eq!(body["status"], 500);
+        assert!(
+            !body["detail"].as_str().unwrap().contains("boom"),
+            "no internals leak"
+        );
+    }
+
+    #[tokio::test]
+    async fn bare_error_responses_become_problem_documents() {
+        let bare = (StatusCode::SERVICE_UNAVAILABLE, "").into_response();
+        let response = problem_for_bare_errors(State(RetryAfter(3)), bare).await;
+        assert_eq!(response.status(), StatusCode::SERVICE_UNAVAILABLE);
+        assert_eq!(response.headers()[header::CONTENT_TYPE], PROBLEM_JSON);
+        assert_eq!(response.headers()[header::RETRY_AFTER], "3");
+        assert_eq!(body_json(response).await["status"], 503);
+        let fine = (StatusCode::OK, "fine").into_response();
+        let response = problem_for_bare_errors(State(RetryAfter(3)), fine).await;
+        assert_eq!(response.status(), StatusCode::OK);
+    }
 
     #[test]
     fn bearer_tokens_are_parsed() {

@@ -33,7 +33,7 @@ use utoipa_axum::routes;
 
 use crate::config::Config;
 use error::{FieldError, PROBLEM_JSON, Problem};
-use routes::{curves, ops};
+use routes::{curves, ops, shape};
 pub use server::{Server, shutdown_signal};
 pub use state::{AppState, Readiness};
 
@@ -101,6 +101,9 @@ fn v1_routes() -> OpenApiRouter<AppState> {
     OpenApiRouter::new()
         .routes(routes!(curves::evaluate))
         .routes(routes!(curves::envelope))
+        .routes(routes!(shape::membership))
+        .routes(routes!(shape::regions))
+        .routes(routes!(shape::solve))
 }
 
 /// Probe, metrics and document routes (always open).
@@ -131,10 +134,13 @@ fn cors_layer(origins: &[String]) -> Option<CorsLayer> {
 
 /// The OpenAPI document, generated from the routes and types.
 pub fn openapi() -> OpenApiDocument {
-    OpenApiRouter::<AppState>::with_openapi(ApiDoc::openapi())
+    let mut document = OpenApiRouter::<AppState>::with_openapi(ApiDoc::openapi())
         .merge(v1_routes())
         .merge(ops_routes())
-        .into_openapi()
+        .into_openapi();
+    // After the merge, so that the paths exist.
+    SecurityAndCommonErrors.modify(&mut document);
+    document
 }
 
 /// The OpenAPI document as pretty JSON with a final newline (the form of
@@ -159,10 +165,10 @@ pub fn openapi_json() -> String {
     ),
     tags(
         (name = "curves", description = "Curve evaluation and the knot-moving envelope"),
+        (name = "shape", description = "Shape modification of cubic curves by knot pairs Ω1–Ω6 (Tornai; Juhász & Hoffmann)"),
         (name = "operations", description = "Probes, metrics and this document; never need the API key"),
     ),
     components(schemas(Problem, FieldError)),
-    modifiers(&SecurityAndCommonErrors),
 )]
 struct ApiDoc;
 
@@ -223,4 +229,41 @@ fn problem_response(description: &str) -> utoipa::openapi::Response {
                 .build(),
         )
         .build()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use axum::body::Body;
+    use axum::http::Request;
+    use tower::ServiceExt;
+
+    #[tokio::test]
+    async fn draining_turns_readiness_and_v1_into_503_but_not_liveness() {
+        let readiness = Readiness::new();
+        let router = app_with_readiness(&Config::default(), readiness.clone());
+        let get = |path: &str| Request::get(path).body(Body::empty()).unwrap();
+        let ready = router.clone().oneshot(get("/readyz")).await.unwrap();
+        assert_eq!(ready.status(), StatusCode::OK);
+        readiness.start_draining();
+        let ready = router.clone().oneshot(get("/readyz")).await.unwrap();
+        assert_eq!(ready.status(), StatusCode::SERVICE_UNAVAILABLE);
+        assert!(ready.headers().contains_key(header::RETRY_AFTER));
+        let health = router.clone().oneshot(get("/healthz")).await.unwrap();
+        assert_eq!(health.status(), StatusCode::OK);
+        let evaluate = Request::post("/v1/curves/evaluate")
+            .header(header::CONTENT_TYPE, "application/json")
+            .body(Body::from("{}"))
+            .unwrap();
+        let refused = router.oneshot(evaluate).await.unwrap();
+        assert_eq!(refused.status(), StatusCode::SERVICE_UNAVAILABLE);
+        assert_eq!(refused.headers()[header::CONTENT_TYPE], PROBLEM_JSON);
+    }
+
+    #[test]
+    fn the_document_names_every_route() {
+        let document = openapi();
+        let paths: Vec<&String> = document.paths.paths.keys().collect();
+        assert_eq!(paths.len(), 9, "{paths:?}");
+    }
 }

@@ -2,6 +2,7 @@
 
 pub mod curves;
 pub mod ops;
+pub mod shape;
 
 use super::error::ApiError;
 

@@ -1,0 +1,86 @@
+//! Every request body in `examples/` (the README's curl examples) posted to the real server:
+//! a 200 with a sensible body. A file `<group>-<endpoint>[-variant].json` goes to
+//! `/v1/<group>/<endpoint>`.
+
+use serde_json::Value;
+
+use crate::helpers::{numbers, points, spawn_app};
+
+fn check_sensible(path: &str, request: &Value, body: &Value) {
+    match path {
+        "/v1/curves/evaluate" => {
+            let parameters = numbers(&body["parameters"]);
+            assert!(!parameters.is_empty());
+            let found = points(&body["points"]);
+            assert_eq!(found.len(), parameters.len());
+            assert!(found.iter().flatten().all(|v| v.is_finite()));
+            assert_eq!(numbers(&body["domain"]).len(), 2);
+            if let Some(order) = request["derivatives"].as_u64().filter(|&d| d > 0) {
+                assert_eq!(body["derivatives"].as_array().unwrap().len() as u64, order);
+            }
+        }
+        "/v1/curves/envelope" => {
+            let multiplicity = body["multiplicity"].as_u64().unwrap();
+            assert_eq!(
+                body["envelope"]["degree"].as_u64().unwrap(),
+                request["curve"]["degree"].as_u64().unwrap() - multiplicity
+            );
+        }
+        "/v1/shape/membership" => {
+            let any = body["candidates"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .flat_map(|c| c["regions"].as_array().unwrap())
+                .any(|r| r["contains"] == true);
+            assert_eq!(body["reachable"], any);
+            assert_eq!(body["reachable"], true, "examples show reachable targets");
+        }
+        "/v1/shape/regions" => {
+            for candidate in body["candidates"].as_array().unwrap() {
+                for region in candidate["regions"].as_array().unwrap() {
+                    let polygon = points(&region["polygon"]);
+                    assert!(polygon.len() >= 4);
+                    assert_eq!(polygon.first(), polygon.last());
+                }
+            }
+        }
+        "/v1/shape/solve" => {
+            let solutions = body["solutions"].as_array().unwrap();
+            assert_eq!(body["reachable"], true, "examples show reachable targets");
+            assert!(!solutions.is_empty());
+            for solution in solutions {
+                assert!(solution["residual"].as_f64().unwrap() < 1e-9, "{solution}");
+            }
+        }
+        other => panic!("no check for {other}"),
+    }
+}
+
+#[tokio::test]
+async fn every_example_request_gets_a_sensible_200() {
+    let app = spawn_app().await;
+    let directory = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples");
+    let mut files: Vec<_> = std::fs::read_dir(&directory)
+        .unwrap()
+        .map(|entry| entry.unwrap().path())
+        .filter(|path| path.extension().is_some_and(|e| e == "json"))
+        .collect();
+    files.sort();
+    let mut endpoints = std::collections::BTreeSet::new();
+    for file in &files {
+        let name = file.file_stem().unwrap().to_str().unwrap();
+        let mut parts = name.split('-');
+        let path = format!("/v1/{}/{}", parts.next().unwrap(), parts.next().unwrap());
+        let request: Value = serde_json::from_str(&std::fs::read_to_string(file).unwrap()).unwrap();
+        let (status, body) = app.post_json(&path, &request).await;
+        assert_eq!(status, 200, "{name}: {body}");
+        check_sensible(&path, &request, &body);
+        endpoints.insert(path);
+    }
+    assert_eq!(
+        endpoints.len(),
+        5,
+        "one example or more per endpoint: {endpoints:?}"
+    );
+}

@@ -1,0 +1,14 @@
+//! Integration tests: the real server on `127.0.0.1:0`, driven over HTTP. One test binary, so
+//! it links once. Set `TEST_LOG=1` (or a filter such as `TEST_LOG=knotshape=debug`) for logs.
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
+mod auth;
+mod curves;
+mod errors;
+mod examples;
+mod helpers;
+mod limits;
+mod ops;
+mod reference;
+mod shape;
+mod shutdown;
