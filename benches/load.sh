@@ -138,6 +138,13 @@ if [[ "$code" != 200 ]]; then
     log "POST /v1/shape/solve answered $code:"; cat "$workdir/solve.out" >&2; echo >&2
     exit 1
 fi
+# ... and one the solver answers with solutions (the target is reachable), so
+# the run measures the whole solve, not an early exit.
+if ! tr -d ' \n' <"$workdir/solve.out" | grep -q '"reachable":true'; then
+    log "POST /v1/shape/solve: the benchmark target is not reachable:"
+    cat "$workdir/solve.out" >&2; echo >&2
+    exit 1
+fi
 
 # ---------------------------------------------------------------- load ----
 # run_wrk NAME PATH [BODY]: warm-up, then the measured run; leaves
