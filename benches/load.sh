@@ -10,7 +10,10 @@
 #
 # Load generator: wrk (Debian package, installed by this script if missing):
 # a C event loop that adds little CPU of its own next to the server on a
-# 2-core machine and installs in seconds.
+# 2-core machine and installs in seconds (oha would be a few hundred crates to
+# compile first). Both share the machine's cores, so the numbers are for
+# server + generator on one box; a busy machine skews them (the load average
+# is printed before and after).
 #
 # Usage: bash benches/load.sh
 # Environment: DURATION (s, default 10), WARMUP (s, default 2),
@@ -171,7 +174,8 @@ run_wrk() {
     }' <<<"$line" >>"$workdir/results"
 }
 
-echo "machine: $(nproc) cores; load average before the run: $(cut -d' ' -f1-3 /proc/loadavg)"
+echo "commit: $(git rev-parse --short HEAD 2>/dev/null || echo unknown); machine: $(nproc) cores, load generator and server share them"
+echo "load average before the run: $(cut -d' ' -f1-3 /proc/loadavg)"
 echo "wrk: $(wrk --version 2>&1 | head -n1 | cut -d' ' -f1-2); $CONNECTIONS connections, $THREADS threads, ${DURATION}s per endpoint after ${WARMUP}s warm-up"
 
 run_wrk healthz /healthz
