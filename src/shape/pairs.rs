@@ -491,12 +491,20 @@ fn raw_solutions(
     (out, count)
 }
 
-/// Snaps `value` onto `[lo, hi]` when it is outside by at most `tol`; `None` when further out.
-fn clamp_within(value: f64, lo: f64, hi: f64, tol: f64) -> Option<f64> {
+/// `value` in `[lo, hi]`: clamped onto a bound when outside by at most `tol`, snapped onto a
+/// bound when inside within `snap` (so coincident knots come out exactly equal); `None` when
+/// further out.
+fn clamp_within(value: f64, lo: f64, hi: f64, tol: f64, snap: f64) -> Option<f64> {
     if !value.is_finite() || value < lo - tol || value > hi + tol {
         return None;
     }
-    Some(value.clamp(lo, hi))
+    Some(if value <= lo + snap {
+        lo
+    } else if value >= hi - snap {
+        hi
+    } else {
+        value
+    })
 }
 
 /// The solutions `[a, b, c, e]` of `pair` for the frame coordinates `(x, y)` that satisfy the
@@ -560,16 +568,16 @@ pub fn solve_pair(pair: KnotPair, k: &LocalKnots, x: f64, y: f64) -> ([[f64; 4];
         let moves = |knot: LocalKnot| knot == unknown_1 || knot == unknown_2;
         let b_floor = if moves(LocalKnot::A) { k.l } else { k.a };
         let c_ceiling = if moves(LocalKnot::E) { k.r } else { k.e };
-        let Some(b) = clamp_within(b, b_floor, k.t, clamp_tol) else {
+        let Some(b) = clamp_within(b, b_floor, k.t, clamp_tol, tol) else {
             continue;
         };
-        let Some(a) = clamp_within(a, k.l, b, clamp_tol) else {
+        let Some(a) = clamp_within(a, k.l, b, clamp_tol, tol) else {
             continue;
         };
-        let Some(c) = clamp_within(c, k.t, c_ceiling, clamp_tol) else {
+        let Some(c) = clamp_within(c, k.t, c_ceiling, clamp_tol, tol) else {
             continue;
         };
-        let Some(e) = clamp_within(e, c, k.r, clamp_tol) else {
+        let Some(e) = clamp_within(e, c, k.r, clamp_tol, tol) else {
             continue;
         };
         let triple_knot = x == 0.0 && y == 0.0 && pair == KnotPair::Omega2 && b == k.t && c == k.t;
