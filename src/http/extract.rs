@@ -2,6 +2,7 @@
 //! [`ApiError`]s, so they are answered as problem documents like every other failure.
 
 use axum::extract::FromRequest;
+use axum::http::header::CONTENT_TYPE;
 use axum::response::{IntoResponse, Response};
 use serde::Serialize;
 use serde_json::Value;
@@ -19,9 +20,12 @@ pub struct ApiJson<T>(pub T);
 /// instead of a body with `null` where a number belongs.
 impl<T: Serialize> IntoResponse for ApiJson<T> {
     fn into_response(self) -> Response {
-        match serde_json::to_value(&self.0) {
-            // Serialized again from the typed value, so fields keep their declared order.
-            Ok(value) if !holds_null(&value) => axum::Json(self.0).into_response(),
+        // One serialization; only a body with a `null` token (rare) is parsed again to look
+        // for a non-finite number exactly.
+        match serde_json::to_vec(&self.0) {
+            Ok(bytes) if !has_non_finite(&bytes) => {
+                ([(CONTENT_TYPE, "application/json")], bytes).into_response()
+            }
             Ok(_) => ApiError::invalid(
                 "/curve",
                 "the result is not finite: the curve's coordinates or weights are too extreme \
@@ -33,6 +37,15 @@ impl<T: Serialize> IntoResponse for ApiJson<T> {
             }
         }
     }
+}
+
+/// Whether serialized JSON holds a `null` value (serde writes non-finite numbers as `null`;
+/// the service's responses never use `null` otherwise). A byte scan first; a `null` inside a
+/// string is told apart by parsing.
+fn has_non_finite(json: &[u8]) -> bool {
+    json.windows(4)
+        .any(|w| w[0] == b'n' && w[1] == b'u' && w[2] == b'l' && w[3] == b'l')
+        && serde_json::from_slice::<Value>(json).is_ok_and(|value| holds_null(&value))
 }
 
 /// Whether `value` holds a `null` anywhere (the service's responses never use `null`, so one

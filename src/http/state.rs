@@ -42,9 +42,22 @@ impl Readiness {
     }
 }
 
-/// What every handler and middleware can reach. Cheap to clone.
+/// What every handler and middleware can reach: a shared handle (one atomic increment to
+/// clone, which every layer and extractor does per request) to [`SharedState`].
 #[derive(Debug, Clone)]
-pub struct AppState {
+pub struct AppState(Arc<SharedState>);
+
+impl std::ops::Deref for AppState {
+    type Target = SharedState;
+
+    fn deref(&self) -> &SharedState {
+        &self.0
+    }
+}
+
+/// The service's shared, read-mostly state.
+#[derive(Debug)]
+pub struct SharedState {
     /// Request size limits.
     pub limits: Limits,
     /// The limits the spline core applies while validating curves.
@@ -67,7 +80,7 @@ impl AppState {
     /// The state for `config`, sharing `readiness` with whoever drives shutdown.
     pub fn new(config: &Config, readiness: Readiness, openapi_json: Arc<str>) -> Self {
         let limits = config.limits();
-        AppState {
+        AppState(Arc::new(SharedState {
             limits,
             curve_limits: CurveLimits {
                 max_degree: MAX_DEGREE,
@@ -81,6 +94,6 @@ impl AppState {
             readiness,
             metrics: Metrics::new(),
             openapi_json,
-        }
+        }))
     }
 }

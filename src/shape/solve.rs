@@ -378,47 +378,66 @@ pub fn max_deviation(curve: &Curve, new_knots: &[f64], interval: (f64, f64)) -> 
     if hi <= lo {
         return 0.0;
     }
-    let mut breaks: Vec<f64> = old_knots
-        .iter()
-        .chain(new_knots)
-        .copied()
-        .filter(|&u| u > lo && u < hi)
-        .chain([lo, hi])
-        .collect();
-    breaks.sort_by(f64::total_cmp);
-    breaks.dedup();
+    // Both knot vectors are sorted: merge their values inside (lo, hi), without repeats.
+    let mut breaks = Vec::with_capacity(2 * (p + 2) + 2);
+    breaks.push(lo);
+    let (mut i, mut k) = (0, 0);
+    while i < old_knots.len() || k < new_knots.len() {
+        let next = if k >= new_knots.len() || (i < old_knots.len() && old_knots[i] <= new_knots[k])
+        {
+            i += 1;
+            old_knots[i - 1]
+        } else {
+            k += 1;
+            new_knots[k - 1]
+        };
+        if next > lo && next < hi && breaks.last() != Some(&next) {
+            breaks.push(next);
+        }
+    }
+    breaks.push(hi);
     // Both curves are single polynomials (or rationals) on each piece: power form, Horner.
-    let pieces: Vec<_> = breaks
-        .windows(2)
-        .map(|piece| {
-            let old = curve.power_piece_with_knots(old_knots, piece[0]);
-            let new = curve.power_piece_with_knots(new_knots, piece[0]);
-            let step = (piece[1] - piece[0]) / DEVIATION_SAMPLES_PER_PIECE as f64;
-            (old, new, step)
-        })
-        .collect();
-    let gaps: Vec<[f64; DEVIATION_SAMPLES_PER_PIECE + 1]> = pieces
-        .iter()
-        .map(|(old, new, step)| {
-            std::array::from_fn(|i| {
-                distance(old.point(step * i as f64), new.point(step * i as f64))
-            })
-        })
-        .collect();
-    let best = gaps.iter().flatten().copied().fold(0.0, f64::max);
-    // Refine every sampled local maximum that could beat the best sample.
-    let mut refined = best;
-    for ((old, new, step), gaps) in pieces.iter().zip(&gaps) {
+    let pieces = |start: f64| {
+        (
+            curve.power_piece_with_knots(old_knots, start),
+            curve.power_piece_with_knots(new_knots, start),
+        )
+    };
+    // Pass 1: sample every piece; keep its sampled local maxima as candidates.
+    let mut best: f64 = 0.0;
+    let mut candidates: Vec<(usize, usize, f64)> = Vec::new();
+    for (index, piece) in breaks.windows(2).enumerate() {
+        let (old, new) = pieces(piece[0]);
+        let step = (piece[1] - piece[0]) / DEVIATION_SAMPLES_PER_PIECE as f64;
+        let gaps: [f64; DEVIATION_SAMPLES_PER_PIECE + 1] = std::array::from_fn(|i| {
+            distance(old.point(step * i as f64), new.point(step * i as f64))
+        });
         for i in 0..gaps.len() {
             let left = i.saturating_sub(1);
             let right = (i + 1).min(gaps.len() - 1);
-            let local_max = gaps[i] >= gaps[left] && gaps[i] >= gaps[right];
-            if local_max && gaps[i] >= REFINE_FRACTION * best && right > left {
-                let gap = |h: f64| distance(old.point(h), new.point(h));
-                let peak = golden_section_max(&gap, step * left as f64, step * right as f64);
-                refined = refined.max(peak);
+            if gaps[i] >= gaps[left] && gaps[i] >= gaps[right] {
+                candidates.push((index, i, gaps[i]));
             }
         }
+        best = gaps.iter().copied().fold(best, f64::max);
+    }
+    // Pass 2: refine every sampled local maximum that could beat the best sample.
+    let mut refined = best;
+    for &(index, i, gap) in &candidates {
+        if gap < REFINE_FRACTION * best {
+            continue;
+        }
+        let (start, end) = (breaks[index], breaks[index + 1]);
+        let (old, new) = pieces(start);
+        let step = (end - start) / DEVIATION_SAMPLES_PER_PIECE as f64;
+        let left = i.saturating_sub(1);
+        let right = (i + 1).min(DEVIATION_SAMPLES_PER_PIECE);
+        let gap = |h: f64| distance(old.point(h), new.point(h));
+        refined = refined.max(golden_section_max(
+            &gap,
+            step * left as f64,
+            step * right as f64,
+        ));
     }
     refined
 }

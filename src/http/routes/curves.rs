@@ -87,7 +87,13 @@ pub async fn evaluate(
     ApiJson(request): ApiJson<EvaluateRequest>,
 ) -> Result<ApiJson<EvaluateResponse>, ApiError> {
     let (limits, curve_limits) = (state.limits, state.curve_limits);
-    compute(admission, move || {
+    let points = request
+        .parameters
+        .as_ref()
+        .map_or(request.samples.unwrap_or(0), Vec::len);
+    let work = request.curve.control_points.len()
+        + points.saturating_mul(request.derivatives.saturating_add(1));
+    compute(admission, work, move || {
         evaluate_request(&request, &limits, &curve_limits)
     })
     .await
@@ -310,9 +316,12 @@ pub async fn envelope(
     ApiJson(request): ApiJson<EnvelopeRequest>,
 ) -> Result<ApiJson<EnvelopeResponse>, ApiError> {
     let curve_limits = state.curve_limits;
-    compute(admission, move || envelope_request(&request, &curve_limits))
-        .await
-        .map(ApiJson)
+    let work = request.curve.control_points.len();
+    compute(admission, work, move || {
+        envelope_request(&request, &curve_limits)
+    })
+    .await
+    .map(ApiJson)
 }
 
 fn envelope_request(

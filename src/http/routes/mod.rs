@@ -9,19 +9,30 @@ use axum::Extension;
 use super::error::ApiError;
 use super::middleware::AdmissionPermit;
 
-/// Runs CPU-bound request work on the blocking pool, so a slow request never stalls the
+/// Requests whose estimated work is at most this many point evaluations (well under a
+/// millisecond) are computed inline on the runtime: a hand-off to the blocking pool would
+/// cost more than the work itself.
+pub const INLINE_WORK_LIMIT: usize = 20_000;
+
+/// Runs request work: inline when `estimated_work` (point evaluations, roughly) is at most
+/// [`INLINE_WORK_LIMIT`], else on the blocking pool, so a large request never stalls the
 /// runtime and the request timeout can answer while it runs. The request's admission permit
 /// moves along, so work that outlives a timed-out request still counts against the
 /// concurrency limit. A panic in `work` is resumed here, where the panic-catching layer
 /// answers it as a 500 problem and logs it.
 pub async fn compute<T, F>(
     admission: Option<Extension<AdmissionPermit>>,
+    estimated_work: usize,
     work: F,
 ) -> Result<T, ApiError>
 where
     T: Send + 'static,
     F: FnOnce() -> Result<T, ApiError> + Send + 'static,
 {
+    if estimated_work <= INLINE_WORK_LIMIT {
+        let _admission = admission;
+        return work();
+    }
     let computation = move || {
         let _admission = admission;
         work()

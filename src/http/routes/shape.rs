@@ -376,7 +376,9 @@ pub async fn membership(
     ApiJson(request): ApiJson<ShapeRequest>,
 ) -> Result<ApiJson<MembershipResponse>, ApiError> {
     let curve_limits = state.curve_limits;
-    compute(admission, move || {
+    // Validation is linear in the control points; the method itself is local and bounded.
+    let work = request.curve.control_points.len();
+    compute(admission, work, move || {
         let parsed = ParsedShape::parse(&request.curve, &request.regions, &curve_limits)?;
         let query = parsed.query(request.parameter, request.side, request.keep_domain);
         let outcome =
@@ -413,7 +415,9 @@ pub async fn solve(
     ApiJson(request): ApiJson<ShapeRequest>,
 ) -> Result<ApiJson<SolveResponse>, ApiError> {
     let curve_limits = state.curve_limits;
-    compute(admission, move || {
+    // Validation is linear in the control points; the method itself is local and bounded.
+    let work = request.curve.control_points.len();
+    compute(admission, work, move || {
         let parsed = ParsedShape::parse(&request.curve, &request.regions, &curve_limits)?;
         let query = parsed.query(request.parameter, request.side, request.keep_domain);
         let outcome = shape::solve(
@@ -478,7 +482,9 @@ pub async fn regions(
     ApiJson(request): ApiJson<RegionsRequest>,
 ) -> Result<ApiJson<RegionsResponse>, ApiError> {
     let (limits, curve_limits) = (state.limits, state.curve_limits);
-    compute(admission, move || {
+    // Up to two sides of six polygons, each up to the vertex limit.
+    let work = 12 * limits.max_polygon_vertices.max(MIN_POLYGON_VERTEX_LIMIT);
+    compute(admission, work, move || {
         regions_request(&request, &limits, &curve_limits)
     })
     .await
