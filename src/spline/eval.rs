@@ -170,27 +170,13 @@ impl<'c> BatchEvaluator<'c> {
         let n = curve.control_points().len() - 1;
         let mut starts = Vec::new();
         let mut coefficients = Vec::new();
-        let mut ders = [[0.0; CAP]; CAP];
         for span in p..=n {
             let left = knots[span];
             if left >= knots[span + 1] {
                 continue;
             }
-            basis_derivatives(knots, p, span, left, p, &mut ders);
-            let mut factorial = 1.0;
-            for (d, row) in ders.iter().enumerate().take(p + 1) {
-                if d > 0 {
-                    factorial *= d as f64;
-                }
-                let mut c = [0.0; 4];
-                for (r, &value) in row.iter().enumerate().take(p + 1) {
-                    let pw = curve.homogeneous()[span - p + r];
-                    for (ci, cv) in c.iter_mut().enumerate() {
-                        *cv += value * pw[ci];
-                    }
-                }
-                coefficients.push(c.map(|v| v / factorial));
-            }
+            let piece = curve.power_piece_with_knots(knots, left);
+            coefficients.extend_from_slice(piece.coefficients());
             starts.push(left);
         }
         let mut ends: Vec<f64> = starts[1..].to_vec();

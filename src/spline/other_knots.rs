@@ -45,6 +45,11 @@ pub struct PowerPiece {
 }
 
 impl PowerPiece {
+    /// The `p + 1` homogeneous coefficients, lowest power first.
+    pub fn coefficients(&self) -> &[[f64; 4]] {
+        &self.coefficients[..=self.degree]
+    }
+
     /// The curve point at offset `h` from the piece's left end (Horner's rule).
     #[inline]
     pub fn point(&self, h: f64) -> Point {
