@@ -343,8 +343,10 @@ impl Curve {
     }
 
     /// The same curve with another full knot vector (same length). Checks only what evaluation
-    /// needs: finite, non-decreasing values and a non-empty domain; a knot-moving edit may
-    /// legitimately reach multiplicity `p + 2` at a clamped end, where it has no effect.
+    /// needs: finite, non-decreasing values and a non-empty domain. Unlike [`Curve::new`] it
+    /// accepts any multiplicity, e.g. a knot moved onto a clamped end (multiplicity `p + 2`
+    /// there, which takes `d_0` or `d_n` out of the curve: the shape solver's `keep_domain`
+    /// rejects such edits).
     pub fn with_full_knots(&self, knots: Vec<f64>) -> Option<Curve> {
         let valid = knots.len() == self.knots.len()
             && knots.iter().all(|u| u.is_finite())
