@@ -68,13 +68,6 @@ pub struct Frame {
     pub y: f64,
 }
 
-impl Frame {
-    /// Whether the frame lies in the closed triangle `x >= 0, y >= 0, x + y <= 1`, within `tol`.
-    pub fn in_triangle(&self, tol: f64) -> bool {
-        self.x >= -tol && self.y >= -tol && self.x + self.y <= 1.0 + tol
-    }
-}
-
 /// Why a side cannot move the curve point.
 #[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
 pub enum NotApplicable {

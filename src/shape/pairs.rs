@@ -92,11 +92,6 @@ impl KnotPair {
         }
     }
 
-    /// The pair with wire name `name`.
-    pub fn from_name(name: &str) -> Option<KnotPair> {
-        KnotPair::ALL.into_iter().find(|pair| pair.name() == name)
-    }
-
     /// The two knots that move.
     pub fn unknowns(self) -> [LocalKnot; 2] {
         match self {
