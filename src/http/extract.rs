@@ -1,18 +1,57 @@
 //! The JSON body extractor whose rejections (wrong content type, bad JSON, oversize body) are
 //! [`ApiError`]s, so they are answered as problem documents like every other failure.
 
-use axum::extract::FromRequest;
+use axum::body::Bytes;
+use axum::extract::rejection::JsonRejection;
+use axum::extract::{FromRequest, Request};
+use axum::http::HeaderMap;
 use axum::http::header::CONTENT_TYPE;
 use axum::response::{IntoResponse, Response};
 use serde::Serialize;
+use serde::de::DeserializeOwned;
 use serde_json::Value;
 
 use super::error::ApiError;
 
 /// `axum::Json` with [`ApiError`] as its rejection; also usable as a JSON response.
-#[derive(Debug, Clone, FromRequest)]
-#[from_request(via(axum::Json), rejection(ApiError))]
+#[derive(Debug, Clone)]
 pub struct ApiJson<T>(pub T);
+
+/// As an extractor: what `axum::Json` accepts, with its rejections as [`ApiError`]s. The
+/// common case (`Content-Type: application/json`, a valid body) is parsed by plain
+/// `serde_json`; only a body that fails is parsed again by `axum::Json`, whose path tracking
+/// gives the error's JSON pointer. Other content types go to `axum::Json` as a whole.
+impl<T, S> FromRequest<S> for ApiJson<T>
+where
+    T: DeserializeOwned,
+    S: Send + Sync,
+{
+    type Rejection = ApiError;
+
+    async fn from_request(request: Request, state: &S) -> Result<Self, ApiError> {
+        if !is_plain_json(request.headers()) {
+            let axum::Json(value) = axum::Json::<T>::from_request(request, state).await?;
+            return Ok(ApiJson(value));
+        }
+        let bytes = Bytes::from_request(request, state)
+            .await
+            .map_err(|rejection| ApiError::from(JsonRejection::from(rejection)))?;
+        match serde_json::from_slice(&bytes) {
+            Ok(value) => Ok(ApiJson(value)),
+            Err(_) => {
+                let axum::Json(value) = axum::Json::<T>::from_bytes(&bytes)?;
+                Ok(ApiJson(value))
+            }
+        }
+    }
+}
+
+/// Whether the content type is exactly `application/json` (any letter case, no parameters).
+fn is_plain_json(headers: &HeaderMap) -> bool {
+    headers
+        .get(CONTENT_TYPE)
+        .is_some_and(|value| value.as_bytes().eq_ignore_ascii_case(b"application/json"))
+}
 
 /// As a response: JSON, unless a number in it is not finite (JSON has no NaN or infinity,
 /// and serde would write `null`). That only happens for inputs of extreme magnitude (say
@@ -22,7 +61,9 @@ impl<T: Serialize> IntoResponse for ApiJson<T> {
     fn into_response(self) -> Response {
         // One serialization; only a body with a `null` token (rare) is parsed again to look
         // for a non-finite number exactly.
-        match serde_json::to_vec(&self.0) {
+        // Most answers are a few hundred bytes to a few kilobytes: start with room for those.
+        let mut bytes = Vec::with_capacity(RESPONSE_CAPACITY);
+        match serde_json::to_writer(&mut bytes, &self.0).map(|()| bytes) {
             Ok(bytes) if !has_non_finite(&bytes) => {
                 ([(CONTENT_TYPE, "application/json")], bytes).into_response()
             }
@@ -39,12 +80,14 @@ impl<T: Serialize> IntoResponse for ApiJson<T> {
     }
 }
 
+/// Initial capacity of a response body buffer, in bytes.
+const RESPONSE_CAPACITY: usize = 2048;
+
 /// Whether serialized JSON holds a `null` value (serde writes non-finite numbers as `null`;
 /// the service's responses never use `null` otherwise). A byte scan first; a `null` inside a
 /// string is told apart by parsing.
 fn has_non_finite(json: &[u8]) -> bool {
-    json.windows(4)
-        .any(|w| w[0] == b'n' && w[1] == b'u' && w[2] == b'l' && w[3] == b'l')
+    memchr::memmem::find(json, b"null").is_some()
         && serde_json::from_slice::<Value>(json).is_ok_and(|value| holds_null(&value))
 }
 

@@ -3,7 +3,7 @@
 
 use super::candidate::{Candidate, Side, SideChoice, candidate, triangle_size};
 use super::pairs::{KnotPair, LocalKnots, solve_pair};
-use crate::spline::vector::{Point, distance};
+use crate::spline::vector::{Point, distance, norm};
 use crate::spline::{Curve, Dimension};
 
 /// Uniform samples per knot interval (of the old and new knots together) in the deviation
@@ -230,6 +230,8 @@ pub fn solve(
     let n = curve.control_points().len() - 1;
     let mut candidates = Vec::with_capacity(2);
     let mut solutions = Vec::new();
+    // Each root's knot vector is tried in this buffer; only kept solutions get their own copy.
+    let mut new_knots = knots.to_vec();
     for &side in query.side.sides() {
         let candidate = candidate(curve, t, side, Some(target));
         let (Some(frame), Some(triangle)) = (candidate.frame, candidate.triangle) else {
@@ -250,7 +252,7 @@ pub fn solve(
             let mut contains = false;
             let (roots, count) = solve_pair(pair, &local, frame.x, frame.y);
             for &[a, b, c, e] in &roots[..count] {
-                let mut new_knots = knots.to_vec();
+                new_knots.copy_from_slice(knots);
                 new_knots[j - 1] = a;
                 new_knots[j] = b;
                 new_knots[j + 1] = t;
@@ -263,14 +265,14 @@ pub fn solve(
                 if !domain_ok || !new_knots[3..=n + 1].iter().all(|&u| u.is_finite()) {
                     continue;
                 }
-                let changed_knots: Vec<usize> = (0..knots.len())
-                    .filter(|&i| new_knots[i] != knots[i])
-                    .collect();
                 let point = curve.point_with_knots(&new_knots, t);
                 let residual = distance(point, target);
                 if residual.is_nan() || residual > accepted_residual {
                     continue;
                 }
+                let changed_knots: Vec<usize> = (0..knots.len())
+                    .filter(|&i| new_knots[i] != knots[i])
+                    .collect();
                 let affected_domain = affected_domain(curve, &new_knots, &changed_knots);
                 let max_deviation = options
                     .measure_deviation
@@ -282,7 +284,7 @@ pub fn solve(
                     span: j,
                     moved_knot: j + 1,
                     changed_knots,
-                    knots: new_knots,
+                    knots: new_knots.clone(),
                     point,
                     residual,
                     affected_domain,
@@ -366,9 +368,10 @@ pub fn affected_domain(curve: &Curve, new_knots: &[f64], changed_knots: &[usize]
 /// Between consecutive knots of the old and the new vector both curves are single polynomial
 /// (or rational) pieces, evaluated in power form; each piece gets
 /// [`DEVIATION_SAMPLES_PER_PIECE`] uniform samples, however short it is, and every sampled
-/// local maximum within 10% of the best is then refined by
-/// golden-section search ([`DEVIATION_REFINEMENT_STEPS`] steps). An estimate from below
-/// (every value is a real distance), exact to the refinement when the peak's bump is sampled.
+/// local maximum within 10% of the best value so far is refined by golden-section search
+/// ([`DEVIATION_REFINEMENT_STEPS`] steps). For polynomial curves the gap is the norm of one
+/// difference polynomial `s_old - s_new` per piece. An estimate from below (every value is a
+/// real distance), exact to the refinement when the peak's bump is sampled.
 pub fn max_deviation(curve: &Curve, new_knots: &[f64], interval: (f64, f64)) -> f64 {
     let old_knots = curve.knots();
     let (p, end) = (curve.degree(), curve.control_points().len());
@@ -397,49 +400,36 @@ pub fn max_deviation(curve: &Curve, new_knots: &[f64], interval: (f64, f64)) -> 
     }
     breaks.push(hi);
     // Both curves are single polynomials (or rationals) on each piece: power form, Horner.
-    let pieces = |start: f64| {
-        (
-            curve.power_piece_with_knots(old_knots, start),
-            curve.power_piece_with_knots(new_knots, start),
-        )
-    };
-    // Pass 1: sample every piece; keep its sampled local maxima as candidates.
+    // Each piece is sampled, and each sampled local maximum that could beat the best value
+    // so far (at least REFINE_FRACTION of it) is refined at once, while the piece is at hand.
     let mut best: f64 = 0.0;
-    let mut candidates: Vec<(usize, usize, f64)> = Vec::new();
-    for (index, piece) in breaks.windows(2).enumerate() {
-        let (old, new) = pieces(piece[0]);
+    for piece in breaks.windows(2) {
+        let old = curve.power_piece_with_knots(old_knots, piece[0]);
+        let new = curve.power_piece_with_knots(new_knots, piece[0]);
+        // Polynomial pieces: one Horner pass on the difference instead of two.
+        let difference = old.difference(&new);
+        let gap = |h: f64| match &difference {
+            Some(difference) => norm(difference.point(h)),
+            None => distance(old.point(h), new.point(h)),
+        };
         let step = (piece[1] - piece[0]) / DEVIATION_SAMPLES_PER_PIECE as f64;
-        let gaps: [f64; DEVIATION_SAMPLES_PER_PIECE + 1] = std::array::from_fn(|i| {
-            distance(old.point(step * i as f64), new.point(step * i as f64))
-        });
+        let gaps: [f64; DEVIATION_SAMPLES_PER_PIECE + 1] =
+            std::array::from_fn(|i| gap(step * i as f64));
+        best = gaps.iter().copied().fold(best, f64::max);
         for i in 0..gaps.len() {
             let left = i.saturating_sub(1);
             let right = (i + 1).min(gaps.len() - 1);
-            if gaps[i] >= gaps[left] && gaps[i] >= gaps[right] {
-                candidates.push((index, i, gaps[i]));
+            let local_maximum = gaps[i] >= gaps[left] && gaps[i] >= gaps[right];
+            if local_maximum && gaps[i] >= REFINE_FRACTION * best {
+                best = best.max(golden_section_max(
+                    &gap,
+                    step * left as f64,
+                    step * right as f64,
+                ));
             }
         }
-        best = gaps.iter().copied().fold(best, f64::max);
     }
-    // Pass 2: refine every sampled local maximum that could beat the best sample.
-    let mut refined = best;
-    for &(index, i, gap) in &candidates {
-        if gap < REFINE_FRACTION * best {
-            continue;
-        }
-        let (start, end) = (breaks[index], breaks[index + 1]);
-        let (old, new) = pieces(start);
-        let step = (end - start) / DEVIATION_SAMPLES_PER_PIECE as f64;
-        let left = i.saturating_sub(1);
-        let right = (i + 1).min(DEVIATION_SAMPLES_PER_PIECE);
-        let gap = |h: f64| distance(old.point(h), new.point(h));
-        refined = refined.max(golden_section_max(
-            &gap,
-            step * left as f64,
-            step * right as f64,
-        ));
-    }
-    refined
+    best
 }
 
 /// Sampled local maxima at least this fraction of the best sample are refined.

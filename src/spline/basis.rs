@@ -60,20 +60,21 @@ pub(crate) fn basis_functions(
 /// (The NURBS Book, A2.3): `ders[k][r]` is the `k`-th derivative of `N_{m-p+r}^{p+1}` at `t`.
 ///
 /// Derivatives of order above `p` vanish and are not written. Same precondition as
-/// [`basis_functions`].
-pub(crate) fn basis_derivatives(
+/// [`basis_functions`], and `p < N`: the buffers are `N × N` (callers pass [`CAP`], or a
+/// smaller `N` for low degrees, which keeps the stack buffers small).
+pub(crate) fn basis_derivatives<const N: usize>(
     knots: &[f64],
     degree: usize,
     span: usize,
     t: f64,
     order: usize,
-    ders: &mut [[f64; CAP]; CAP],
+    ders: &mut [[f64; N]; N],
 ) {
     let p = degree;
     let order = order.min(p);
-    let mut ndu = [[0.0; CAP]; CAP];
-    let mut left = [0.0; CAP];
-    let mut right = [0.0; CAP];
+    let mut ndu = [[0.0; N]; N];
+    let mut left = [0.0; N];
+    let mut right = [0.0; N];
     ndu[0][0] = 1.0;
     for j in 1..=p {
         left[j] = t - knots[span + 1 - j];
@@ -91,7 +92,7 @@ pub(crate) fn basis_derivatives(
     for r in 0..=p {
         ders[0][r] = ndu[r][p];
     }
-    let mut a = [[0.0; CAP]; 2];
+    let mut a = [[0.0; N]; 2];
     for r in 0..=p {
         let (mut s1, mut s2) = (0usize, 1usize);
         a[0][0] = 1.0;

@@ -66,6 +66,31 @@ impl PowerPiece {
             [acc[0], acc[1], acc[2]]
         }
     }
+
+    /// The polynomial piece `h ↦ self.point(h) - other.point(h)`, when neither piece is
+    /// rational (a difference of rational pieces is no polynomial: then `None`). Both pieces
+    /// must start at the same parameter.
+    pub fn difference(&self, other: &PowerPiece) -> Option<PowerPiece> {
+        if self.rational || other.rational {
+            return None;
+        }
+        let degree = self.degree.max(other.degree);
+        let mut coefficients = [[0.0; 4]; CAP];
+        for (d, difference) in coefficients.iter_mut().enumerate().take(degree + 1) {
+            let (mine, theirs) = (self.coefficients[d], other.coefficients[d]);
+            *difference = [
+                mine[0] - theirs[0],
+                mine[1] - theirs[1],
+                mine[2] - theirs[2],
+                0.0,
+            ];
+        }
+        Some(PowerPiece {
+            degree,
+            rational: false,
+            coefficients,
+        })
+    }
 }
 
 impl Curve {
@@ -75,9 +100,19 @@ impl Curve {
     ///
     /// Preconditions as for [`Curve::point_with_knots`]. No allocation.
     pub fn power_piece_with_knots(&self, knots: &[f64], at: f64) -> PowerPiece {
+        // Cubics and below (every shape request) use 4 × 4 basis buffers instead of CAP × CAP.
+        if self.degree() < 4 {
+            self.power_piece_in::<4>(knots, at)
+        } else {
+            self.power_piece_in::<CAP>(knots, at)
+        }
+    }
+
+    /// [`Curve::power_piece_with_knots`] with `N × N` basis buffers (precondition `p < N`).
+    fn power_piece_in<const N: usize>(&self, knots: &[f64], at: f64) -> PowerPiece {
         let p = self.degree();
         let span = find_span(knots, p, at);
-        let mut ders = [[0.0; CAP]; CAP];
+        let mut ders = [[0.0; N]; N];
         basis_derivatives(knots, p, span, at, p, &mut ders);
         let mut coefficients = [[0.0; 4]; CAP];
         let mut factorial = 1.0;

@@ -84,6 +84,44 @@ async fn a_body_that_is_not_json_is_415() {
 }
 
 #[tokio::test]
+async fn json_media_types_with_parameters_or_suffix_are_accepted() {
+    let app = spawn_app().await;
+    let url = format!("{}/v1/curves/evaluate", app.address);
+    let body = json!({"curve": curve(), "samples": 3}).to_string();
+    for content_type in [
+        "application/json",
+        "Application/JSON",
+        "application/json; charset=utf-8",
+        "application/vnd.knotshape+json",
+    ] {
+        let response = app
+            .client
+            .post(&url)
+            .header("content-type", content_type)
+            .body(body.clone())
+            .send()
+            .await
+            .unwrap();
+        assert_eq!(response.status(), 200, "content type {content_type}");
+        let answer: Value = response.json().await.unwrap();
+        assert_eq!(answer["points"].as_array().map(Vec::len), Some(3));
+    }
+    // The same pointer for a wrong type, whichever way the media type is written.
+    let wrong_type = json!({"curve": curve(), "parameters": [0.1, "half"]}).to_string();
+    for content_type in ["application/json", "application/json; charset=utf-8"] {
+        let response = app
+            .client
+            .post(&url)
+            .header("content-type", content_type)
+            .body(wrong_type.clone())
+            .send()
+            .await
+            .unwrap();
+        expect_problem(response, 400, Some("/parameters/1")).await;
+    }
+}
+
+#[tokio::test]
 async fn unknown_paths_are_404_and_wrong_methods_405() {
     let app = spawn_app().await;
     expect_problem(app.get("/v2/curves/evaluate").await, 404, None).await;
