@@ -35,8 +35,9 @@ pub struct CurveBody {
 }
 
 impl CurveBody {
-    /// Validates the wire curve into a core [`Curve`]; errors point below `at` (e.g. `/curve`).
-    pub fn parse(&self, limits: &CurveLimits, at: &JsonPointer) -> Result<Curve, ApiError> {
+    /// Validates the wire curve into a core [`Curve`]; errors point below `at`, a pointer such
+    /// as `"/curve"` (built only when there is an error).
+    pub fn parse(&self, limits: &CurveLimits, at: &str) -> Result<Curve, ApiError> {
         Curve::new(
             self.degree,
             &self.control_points,
@@ -44,7 +45,7 @@ impl CurveBody {
             self.weights.as_deref(),
             limits,
         )
-        .map_err(|error| ApiError::Invalid(vec![curve_field_error(&error, at)]))
+        .map_err(|error| ApiError::Invalid(vec![curve_field_error(&error, &JsonPointer::from(at))]))
     }
 
     /// The wire form of a core curve, knots in the curve's (the caller's) convention.
@@ -55,7 +56,7 @@ impl CurveBody {
             control_points: curve
                 .control_points()
                 .iter()
-                .map(|&point| point_to_wire(point, dimension))
+                .map(|point| point[..dimension.count()].to_vec())
                 .collect(),
             knots: curve.knots_in_convention().to_vec(),
             weights: curve.weights().map(<[f64]>::to_vec),
@@ -83,9 +84,56 @@ pub fn curve_field_error(error: &CurveError, at: &JsonPointer) -> FieldError {
     FieldError::new(pointer, error.to_string())
 }
 
+/// A point in an answer: `[x, y]` or `[x, y, z]` (the curve's dimension), stored inline so
+/// that answers with many points allocate none per point. In the OpenAPI document it is an
+/// array of numbers (`#[schema(value_type = Vec<f64>)]` where it is used).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WirePoint {
+    coordinates: Point,
+    dimension: Dimension,
+}
+
+impl WirePoint {
+    /// The coordinates sent: 2 or 3.
+    pub fn as_slice(&self) -> &[f64] {
+        &self.coordinates[..self.dimension.count()]
+    }
+}
+
+impl Serialize for WirePoint {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.collect_seq(self.as_slice())
+    }
+}
+
+impl<'de> Deserialize<'de> for WirePoint {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        let coordinates = Vec::<f64>::deserialize(deserializer)?;
+        let dimension = match coordinates.len() {
+            2 => Dimension::Two,
+            3 => Dimension::Three,
+            count => {
+                return Err(serde::de::Error::invalid_length(
+                    count,
+                    &"a point with 2 or 3 coordinates",
+                ));
+            }
+        };
+        let mut point = [0.0; 3];
+        point[..coordinates.len()].copy_from_slice(&coordinates);
+        Ok(WirePoint {
+            coordinates: point,
+            dimension,
+        })
+    }
+}
+
 /// A core point as `[x, y]` or `[x, y, z]`.
-pub fn point_to_wire(point: Point, dimension: Dimension) -> Vec<f64> {
-    point[..dimension.count()].to_vec()
+pub fn point_to_wire(point: Point, dimension: Dimension) -> WirePoint {
+    WirePoint {
+        coordinates: point,
+        dimension,
+    }
 }
 
 /// A wire point (`[x, y]` or `[x, y, z]`, matching `dimension`) as a core point; the pointer

@@ -20,13 +20,23 @@ use super::error::{ApiError, PROBLEM_JSON, Problem};
 use super::metrics::{Metrics, UNMATCHED_ROUTE};
 use super::state::AppState;
 
-/// Refuses `/v1` requests without the configured API key (401); a no-op when none is set.
-/// The key is compared in constant time.
-pub async fn require_api_key(
+/// The gate of every `/v1` request, one layer: first the API key ([`check_api_key`], 401),
+/// then admission ([`admit`], 503). The admission permit rides along in the request's
+/// extensions as an [`AdmissionPermit`].
+pub async fn guard_v1(
     State(state): State<AppState>,
-    request: Request,
+    mut request: Request,
     next: Next,
 ) -> Result<Response, ApiError> {
+    check_api_key(&state, &request)?;
+    let permit = admit(&state)?;
+    request.extensions_mut().insert(permit);
+    Ok(next.run(request).await)
+}
+
+/// Refuses a request without the configured API key (401); passes all when none is set.
+/// The key is compared in constant time.
+fn check_api_key(state: &AppState, request: &Request) -> Result<(), ApiError> {
     if let Some(expected) = &state.api_key {
         let presented = request
             .headers()
@@ -39,7 +49,7 @@ pub async fn require_api_key(
             return Err(ApiError::Unauthorized);
         }
     }
-    Ok(next.run(request).await)
+    Ok(())
 }
 
 /// The token of an `Authorization: Bearer <token>` header value (scheme case-insensitive).
@@ -58,13 +68,9 @@ pub struct AdmissionPermit {
     _permit: Arc<OwnedSemaphorePermit>,
 }
 
-/// Admits a `/v1` request only while the service is ready and below its concurrency limit;
+/// Admits a request only while the service is ready and below its concurrency limit;
 /// otherwise answers 503 with `Retry-After` at once instead of queueing.
-pub async fn admit(
-    State(state): State<AppState>,
-    mut request: Request,
-    next: Next,
-) -> Result<Response, ApiError> {
+fn admit(state: &AppState) -> Result<AdmissionPermit, ApiError> {
     let retry_after_secs = state.retry_after_secs;
     if !state.readiness.is_ready() {
         return Err(ApiError::ShuttingDown { retry_after_secs });
@@ -72,10 +78,9 @@ pub async fn admit(
     let Ok(permit) = state.admission.clone().try_acquire_owned() else {
         return Err(ApiError::Overloaded { retry_after_secs });
     };
-    request.extensions_mut().insert(AdmissionPermit {
+    Ok(AdmissionPermit {
         _permit: Arc::new(permit),
-    });
-    Ok(next.run(request).await)
+    })
 }
 
 /// Counts the request by method, matched route and status, and observes its latency.

@@ -3,7 +3,8 @@
 
 use super::candidate::{Candidate, Side, SideChoice, candidate, triangle_size};
 use super::pairs::{KnotPair, LocalKnots, solve_pair};
-use crate::spline::vector::{Point, distance, norm};
+use crate::spline::PowerPiece;
+use crate::spline::vector::{Point, distance, dot, sub};
 use crate::spline::{Curve, Dimension};
 
 /// Uniform samples per knot interval (of the old and new knots together) in the deviation
@@ -400,36 +401,100 @@ pub fn max_deviation(curve: &Curve, new_knots: &[f64], interval: (f64, f64)) -> 
     }
     breaks.push(hi);
     // Both curves are single polynomials (or rationals) on each piece: power form, Horner.
-    // Each piece is sampled, and each sampled local maximum that could beat the best value
-    // so far (at least REFINE_FRACTION of it) is refined at once, while the piece is at hand.
-    let mut best: f64 = 0.0;
-    for piece in breaks.windows(2) {
-        let old = curve.power_piece_with_knots(old_knots, piece[0]);
-        let new = curve.power_piece_with_knots(new_knots, piece[0]);
-        // Polynomial pieces: one Horner pass on the difference instead of two.
-        let difference = old.difference(&new);
-        let gap = |h: f64| match &difference {
-            Some(difference) => norm(difference.point(h)),
-            None => distance(old.point(h), new.point(h)),
-        };
-        let step = (piece[1] - piece[0]) / DEVIATION_SAMPLES_PER_PIECE as f64;
-        let gaps: [f64; DEVIATION_SAMPLES_PER_PIECE + 1] =
-            std::array::from_fn(|i| gap(step * i as f64));
-        best = gaps.iter().copied().fold(best, f64::max);
-        for i in 0..gaps.len() {
-            let left = i.saturating_sub(1);
-            let right = (i + 1).min(gaps.len() - 1);
-            let local_maximum = gaps[i] >= gaps[left] && gaps[i] >= gaps[right];
-            if local_maximum && gaps[i] >= REFINE_FRACTION * best {
-                best = best.max(golden_section_max(
-                    &gap,
-                    step * left as f64,
-                    step * right as f64,
-                ));
+    // Pass 1 samples every piece's squared gap; pass 2 refines each sampled local maximum that
+    // could beat the best sample (at least REFINE_FRACTION of it).
+    const LAST: usize = DEVIATION_SAMPLES_PER_PIECE;
+    let gaps: Vec<PieceGap> = breaks
+        .windows(2)
+        .map(|piece| PieceGap::new(curve, old_knots, new_knots, piece[0], piece[1]))
+        .collect();
+    let samples: Vec<[f64; LAST + 1]> = gaps
+        .iter()
+        .map(|gap| std::array::from_fn(|i| gap.squared(gap.step * i as f64)))
+        .collect();
+    let best_squared = samples.iter().flatten().copied().fold(0.0, f64::max);
+    let threshold = REFINE_FRACTION * REFINE_FRACTION * best_squared;
+    let mut refined_squared = best_squared;
+    let mut refine = |piece: usize, i: usize| {
+        let gap = &gaps[piece];
+        let left = i.saturating_sub(1) as f64 * gap.step;
+        let right = (i + 1).min(LAST) as f64 * gap.step;
+        let squared_gap = |h: f64| gap.squared(h);
+        refined_squared = refined_squared.max(golden_section_max(&squared_gap, left, right));
+    };
+    for (piece, values) in samples.iter().enumerate() {
+        // Interior samples: a local maximum among its neighbours.
+        for i in 1..LAST {
+            let value = values[i];
+            if value >= threshold && value >= values[i - 1] && value >= values[i + 1] {
+                refine(piece, i);
             }
         }
+        // A knot between two pieces is one place with a sample on each side (they differ
+        // only where the curve jumps): a maximum when the larger of the two beats both
+        // neighbours; then the brackets on both sides are refined. The domain's ends have
+        // one neighbour.
+        let before = (piece > 0).then(|| samples[piece - 1]);
+        let at_start = before.map_or(values[0], |before| before[LAST].max(values[0]));
+        let left_neighbour = before.map_or(f64::NEG_INFINITY, |before| before[LAST - 1]);
+        if at_start >= threshold && at_start >= left_neighbour && at_start >= values[1] {
+            if piece > 0 {
+                refine(piece - 1, LAST);
+            }
+            refine(piece, 0);
+        }
     }
-    best
+    if let Some(last) = samples.last() {
+        let end = last[LAST];
+        if end >= threshold && end >= last[LAST - 1] {
+            refine(samples.len() - 1, LAST);
+        }
+    }
+    refined_squared.sqrt()
+}
+
+/// The squared distance between the old and the new curve on one piece `[start, end]` of the
+/// merged knots, as a function of the offset `h` from `start`.
+struct PieceGap {
+    /// Distance between samples: `(end - start) / DEVIATION_SAMPLES_PER_PIECE`.
+    step: f64,
+    /// The two curves on the piece.
+    curves: PieceCurves,
+}
+
+/// What a [`PieceGap`] evaluates.
+// A handful per request, in one Vec: boxing the larger variant would only add allocations.
+#[allow(clippy::large_enum_variant)]
+enum PieceCurves {
+    /// Polynomial curves: the one difference polynomial `s_old - s_new`.
+    Difference(PowerPiece),
+    /// Rational curves (whose difference is no polynomial): both pieces, old then new.
+    Both([PowerPiece; 2]),
+}
+
+impl PieceGap {
+    fn new(curve: &Curve, old_knots: &[f64], new_knots: &[f64], start: f64, end: f64) -> Self {
+        let old = curve.power_piece_with_knots(old_knots, start);
+        let new = curve.power_piece_with_knots(new_knots, start);
+        let curves = match old.difference(&new) {
+            Some(difference) => PieceCurves::Difference(difference),
+            None => PieceCurves::Both([old, new]),
+        };
+        PieceGap {
+            step: (end - start) / DEVIATION_SAMPLES_PER_PIECE as f64,
+            curves,
+        }
+    }
+
+    /// `|s_old(start + h) - s_new(start + h)|²`.
+    #[inline(always)]
+    fn squared(&self, h: f64) -> f64 {
+        let gap = match &self.curves {
+            PieceCurves::Difference(difference) => difference.point(h),
+            PieceCurves::Both(pieces) => sub(pieces[0].point(h), pieces[1].point(h)),
+        };
+        dot(gap, gap)
+    }
 }
 
 /// Sampled local maxima at least this fraction of the best sample are refined.

@@ -62,6 +62,10 @@ pub(crate) fn basis_functions(
 /// Derivatives of order above `p` vanish and are not written. Same precondition as
 /// [`basis_functions`], and `p < N`: the buffers are `N × N` (callers pass [`CAP`], or a
 /// smaller `N` for low degrees, which keeps the stack buffers small).
+///
+/// Unlike the book, the table's lower triangle keeps the *reciprocals* of the knot
+/// differences: one division each, and the derivative recurrences multiply.
+#[inline]
 pub(crate) fn basis_derivatives<const N: usize>(
     knots: &[f64],
     degree: usize,
@@ -81,9 +85,9 @@ pub(crate) fn basis_derivatives<const N: usize>(
         right[j] = knots[span + j] - t;
         let mut saved = 0.0;
         for r in 0..j {
-            // Lower triangle: knot differences; upper triangle: basis functions.
-            ndu[j][r] = right[r + 1] + left[j - r];
-            let temp = ndu[r][j - 1] / ndu[j][r];
+            // Lower triangle: reciprocal knot differences; upper triangle: basis functions.
+            ndu[j][r] = 1.0 / (right[r + 1] + left[j - r]);
+            let temp = ndu[r][j - 1] * ndu[j][r];
             ndu[r][j] = saved + right[r + 1] * temp;
             saved = left[j - r] * temp;
         }
@@ -101,7 +105,7 @@ pub(crate) fn basis_derivatives<const N: usize>(
             let pk = p - k;
             if r >= k {
                 let rk = r - k;
-                a[s2][0] = a[s1][0] / ndu[pk + 1][rk];
+                a[s2][0] = a[s1][0] * ndu[pk + 1][rk];
                 d = a[s2][0] * ndu[rk][pk];
             }
             // j runs over 1..=j2 with r - k + j >= 0.
@@ -109,11 +113,11 @@ pub(crate) fn basis_derivatives<const N: usize>(
             let j2 = if r <= pk + 1 { k - 1 } else { p - r };
             for j in j1..=j2 {
                 let rkj = r + j - k;
-                a[s2][j] = (a[s1][j] - a[s1][j - 1]) / ndu[pk + 1][rkj];
+                a[s2][j] = (a[s1][j] - a[s1][j - 1]) * ndu[pk + 1][rkj];
                 d += a[s2][j] * ndu[rkj][pk];
             }
             if r <= pk {
-                a[s2][k] = -a[s1][k - 1] / ndu[pk + 1][r];
+                a[s2][k] = -a[s1][k - 1] * ndu[pk + 1][r];
                 d += a[s2][k] * ndu[r][pk];
             }
             ders[k][r] = d;

@@ -53,13 +53,12 @@ impl PowerPiece {
     /// The curve point at offset `h` from the piece's left end (Horner's rule).
     #[inline]
     pub fn point(&self, h: f64) -> Point {
-        let c = &self.coefficients;
-        let mut acc = c[self.degree];
-        for coefficient in c[..self.degree].iter().rev() {
-            for i in 0..4 {
-                acc[i] = multiply_add(acc[i], h, coefficient[i]);
-            }
-        }
+        // Cubics get a copy of Horner's loop with a fixed trip count (unrolled).
+        let acc = if self.degree == 3 {
+            horner(&self.coefficients, 3, h)
+        } else {
+            horner(&self.coefficients, self.degree, h)
+        };
         if self.rational {
             [acc[0] / acc[3], acc[1] / acc[3], acc[2] / acc[3]]
         } else {
@@ -93,6 +92,18 @@ impl PowerPiece {
     }
 }
 
+/// `Σ_{d <= degree} c[d] h^d` in all four homogeneous coordinates (Horner's rule).
+#[inline(always)]
+fn horner(c: &[[f64; 4]; CAP], degree: usize, h: f64) -> [f64; 4] {
+    let mut acc = c[degree];
+    for coefficient in c[..degree].iter().rev() {
+        for i in 0..4 {
+            acc[i] = multiply_add(acc[i], h, coefficient[i]);
+        }
+    }
+    acc
+}
+
 impl Curve {
     /// The polynomial piece that starts at `at`, of the curve with this control net over the
     /// full knot vector `knots`: Taylor coefficients `A^(d)(at) / d!` of the span holding `at`
@@ -100,34 +111,39 @@ impl Curve {
     ///
     /// Preconditions as for [`Curve::point_with_knots`]. No allocation.
     pub fn power_piece_with_knots(&self, knots: &[f64], at: f64) -> PowerPiece {
-        // Cubics and below (every shape request) use 4 × 4 basis buffers instead of CAP × CAP.
-        if self.degree() < 4 {
-            self.power_piece_in::<4>(knots, at)
+        // Cubics (every shape request) get a copy compiled for degree 3, with 4 × 4 basis
+        // buffers and fully unrolled loops.
+        if self.degree() == 3 {
+            self.power_piece_in::<4>(knots, at, 3)
         } else {
-            self.power_piece_in::<CAP>(knots, at)
+            self.power_piece_in::<CAP>(knots, at, self.degree())
         }
     }
 
-    /// [`Curve::power_piece_with_knots`] with `N × N` basis buffers (precondition `p < N`).
-    fn power_piece_in<const N: usize>(&self, knots: &[f64], at: f64) -> PowerPiece {
-        let p = self.degree();
+    /// [`Curve::power_piece_with_knots`] for `p = degree` (the curve's) with `N × N` basis
+    /// buffers (precondition `p < N`).
+    #[inline(always)]
+    fn power_piece_in<const N: usize>(&self, knots: &[f64], at: f64, degree: usize) -> PowerPiece {
+        debug_assert_eq!(degree, self.degree());
+        let p = degree;
         let span = find_span(knots, p, at);
         let mut ders = [[0.0; N]; N];
         basis_derivatives(knots, p, span, at, p, &mut ders);
         let mut coefficients = [[0.0; 4]; CAP];
+        let net = &self.homogeneous()[span - p..=span];
         let mut factorial = 1.0;
         for (d, row) in ders.iter().enumerate().take(p + 1) {
             if d > 0 {
                 factorial *= d as f64;
             }
+            let inverse_factorial = 1.0 / factorial;
             let mut c = [0.0; 4];
-            for (r, &value) in row.iter().enumerate().take(p + 1) {
-                let pw = self.homogeneous()[span - p + r];
-                for (ci, cv) in c.iter_mut().enumerate() {
-                    *cv += value * pw[ci];
+            for (&value, pw) in row.iter().zip(net) {
+                for (cv, &w) in c.iter_mut().zip(pw) {
+                    *cv += value * w;
                 }
             }
-            coefficients[d] = c.map(|v| v / factorial);
+            coefficients[d] = c.map(|v| v * inverse_factorial);
         }
         PowerPiece {
             degree: p,

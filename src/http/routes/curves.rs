@@ -7,7 +7,7 @@ use utoipa::ToSchema;
 
 use super::compute;
 use crate::config::Limits;
-use crate::http::curve::{CurveBody, point_to_wire};
+use crate::http::curve::{CurveBody, WirePoint, point_to_wire};
 use crate::http::error::{ApiError, FieldError, Problem};
 use crate::http::extract::ApiJson;
 use crate::http::middleware::AdmissionPermit;
@@ -58,11 +58,13 @@ pub struct EvaluateResponse {
     /// The parameters evaluated (the given ones, or the uniform samples).
     pub parameters: Vec<f64>,
     /// `points[i]` is the curve point at `parameters[i]`.
-    pub points: Vec<Vec<f64>>,
+    #[schema(value_type = Vec<Vec<f64>>)]
+    pub points: Vec<WirePoint>,
     /// Present when `derivatives > 0`: `derivatives[d-1][i]` is the d-th derivative at
     /// `parameters[i]`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub derivatives: Option<Vec<Vec<Vec<f64>>>>,
+    #[schema(value_type = Option<Vec<Vec<Vec<f64>>>>)]
+    pub derivatives: Option<Vec<Vec<WirePoint>>>,
 }
 
 /// Evaluate a curve.
@@ -112,10 +114,7 @@ fn evaluate_request(
     curve_limits: &CurveLimits,
 ) -> Result<EvaluateResponse, ApiError> {
     let mut errors = Vec::new();
-    let curve = match request
-        .curve
-        .parse(curve_limits, &JsonPointer::from("/curve"))
-    {
+    let curve = match request.curve.parse(curve_limits, "/curve") {
         Ok(curve) => Some(curve),
         Err(ApiError::Invalid(curve_errors)) => {
             errors.extend(curve_errors);
@@ -328,9 +327,7 @@ fn envelope_request(
     request: &EnvelopeRequest,
     curve_limits: &CurveLimits,
 ) -> Result<EnvelopeResponse, ApiError> {
-    let curve = request
-        .curve
-        .parse(curve_limits, &JsonPointer::from("/curve"))?;
+    let curve = request.curve.parse(curve_limits, "/curve")?;
     let run = curve
         .knot_run(request.knot_index)
         .map_err(|error: EnvelopeError| ApiError::invalid("/knot_index", error.to_string()))?;

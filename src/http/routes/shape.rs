@@ -9,7 +9,7 @@ use utoipa::ToSchema;
 
 use super::compute;
 use crate::config::Limits;
-use crate::http::curve::{CurveBody, point_to_wire};
+use crate::http::curve::{CurveBody, WirePoint, point_to_wire};
 use crate::http::error::{ApiError, FieldError, Problem};
 use crate::http::extract::ApiJson;
 use crate::http::middleware::AdmissionPermit;
@@ -223,7 +223,8 @@ pub struct CandidateBody {
     pub moved_knot: usize,
     /// The control points `d_{j-2}, d_{j-1}, d_j`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub triangle: Option<Vec<Vec<f64>>>,
+    #[schema(value_type = Option<Vec<Vec<f64>>>)]
+    pub triangle: Option<[WirePoint; 3]>,
     /// The target's frame coordinates (membership and solve, applicable sides).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub frame: Option<FrameBody>,
@@ -283,7 +284,8 @@ pub struct SolutionBody {
     /// The whole new knot vector, in the caller's convention.
     pub knots: Vec<f64>,
     /// The new curve's point at `parameter`.
-    pub point: Vec<f64>,
+    #[schema(value_type = Vec<f64>)]
+    pub point: WirePoint,
     /// `|point - target|`.
     pub residual: f64,
     /// `[lo, hi]`: outside it the new curve equals the old one.
@@ -319,7 +321,8 @@ pub struct RegionPolygonBody {
     /// Indices (caller's convention) of the pair of knots this region moves.
     pub knots: [usize; 2],
     /// Closed boundary polygon (first vertex repeated last) in the curve's coordinates.
-    pub polygon: Vec<Vec<f64>>,
+    #[schema(value_type = Vec<Vec<f64>>)]
+    pub polygon: Vec<WirePoint>,
     /// The same polygon in frame coordinates `[x, y]`.
     pub polygon_frame: Vec<[f64; 2]>,
     /// Whether the polygon is within `tolerance` of the true boundary everywhere (false when
@@ -572,7 +575,7 @@ impl ParsedShape {
             ));
         }
         let mut errors = Vec::new();
-        let parsed_curve = match curve.parse(curve_limits, &JsonPointer::from("/curve")) {
+        let parsed_curve = match curve.parse(curve_limits, "/curve") {
             Ok(parsed) => Some(parsed),
             Err(ApiError::Invalid(curve_errors)) => {
                 errors.extend(curve_errors);
@@ -664,12 +667,9 @@ fn candidate_body(curve: &Curve, candidate: &Candidate) -> CandidateBody {
         reason: candidate.not_applicable.map(|reason| reason.to_string()),
         span: candidate.span,
         moved_knot: caller_knot_index(curve, candidate.moved_knot),
-        triangle: candidate.triangle.map(|triangle| {
-            triangle
-                .iter()
-                .map(|&p| point_to_wire(p, dimension))
-                .collect()
-        }),
+        triangle: candidate
+            .triangle
+            .map(|triangle| triangle.map(|p| point_to_wire(p, dimension))),
         frame: candidate.frame.map(|frame| FrameBody {
             x: frame.x,
             y: frame.y,
