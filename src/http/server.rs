@@ -1,6 +1,7 @@
 //! The server: binds the listener, serves the router, and shuts down gracefully (readiness
 //! turns 503, the optional drain delay passes, the listener closes, in-flight requests finish).
 
+use axum::serve::ListenerExt;
 use std::future::Future;
 use std::io;
 use std::net::SocketAddr;
@@ -53,7 +54,13 @@ impl Server {
     {
         let readiness = self.readiness.clone();
         let drain_delay = self.drain_delay;
-        axum::serve(self.listener, self.router)
+        // Each answer is written whole; Nagle's algorithm would only hold back small ones.
+        let listener = self.listener.tap_io(|stream| {
+            if let Err(error) = stream.set_nodelay(true) {
+                tracing::debug!(%error, "could not set TCP_NODELAY");
+            }
+        });
+        axum::serve(listener, self.router)
             .with_graceful_shutdown(async move {
                 shutdown.await;
                 readiness.start_draining();
