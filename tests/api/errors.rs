@@ -94,14 +94,7 @@ async fn json_media_types_with_parameters_or_suffix_are_accepted() {
         "application/json; charset=utf-8",
         "application/vnd.knotshape+json",
     ] {
-        let response = app
-            .client
-            .post(&url)
-            .header("content-type", content_type)
-            .body(body.clone())
-            .send()
-            .await
-            .unwrap();
+        let response = post_as(&app, &url, content_type, &body).await;
         assert_eq!(response.status(), 200, "content type {content_type}");
         let answer: Value = response.json().await.unwrap();
         assert_eq!(answer["points"].as_array().map(Vec::len), Some(3));
@@ -109,16 +102,25 @@ async fn json_media_types_with_parameters_or_suffix_are_accepted() {
     // The same pointer for a wrong type, whichever way the media type is written.
     let wrong_type = json!({"curve": curve(), "parameters": [0.1, "half"]}).to_string();
     for content_type in ["application/json", "application/json; charset=utf-8"] {
-        let response = app
-            .client
-            .post(&url)
-            .header("content-type", content_type)
-            .body(wrong_type.clone())
-            .send()
-            .await
-            .unwrap();
+        let response = post_as(&app, &url, content_type, &wrong_type).await;
         expect_problem(response, 400, Some("/parameters/1")).await;
     }
+}
+
+/// Posts `body` to `url` with the given `Content-Type`.
+async fn post_as(
+    app: &crate::helpers::TestApp,
+    url: &str,
+    content_type: &str,
+    body: &str,
+) -> reqwest::Response {
+    app.client
+        .post(url)
+        .header("content-type", content_type)
+        .body(body.to_owned())
+        .send()
+        .await
+        .unwrap()
 }
 
 #[tokio::test]
