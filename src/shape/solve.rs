@@ -8,11 +8,11 @@ use crate::spline::vector::{Point, distance, dot, sub};
 use crate::spline::{Curve, Dimension};
 
 /// Uniform samples per knot interval (of the old and new knots together) in the deviation
-/// estimate; the best one is then refined by golden-section search.
+/// estimate; the sampled local maxima near the best are then refined by golden-section search.
 pub const DEVIATION_SAMPLES_PER_PIECE: usize = 16;
 
-/// Golden-section steps that refine the deviation's best sample (each shrinks the bracket by
-/// 0.618).
+/// Golden-section steps that refine each of the deviation's sampled maxima (each shrinks the
+/// bracket by 0.618).
 pub const DEVIATION_REFINEMENT_STEPS: usize = 20;
 
 /// Why a shape request cannot be answered.
@@ -368,11 +368,12 @@ pub fn affected_domain(curve: &Curve, new_knots: &[f64], changed_knots: &[usize]
 ///
 /// Between consecutive knots of the old and the new vector both curves are single polynomial
 /// (or rational) pieces, evaluated in power form; each piece gets
-/// [`DEVIATION_SAMPLES_PER_PIECE`] uniform samples, however short it is, and every sampled
-/// local maximum within 10% of the best value so far is refined by golden-section search
-/// ([`DEVIATION_REFINEMENT_STEPS`] steps). For polynomial curves the gap is the norm of one
-/// difference polynomial `s_old - s_new` per piece. An estimate from below (every value is a
-/// real distance), exact to the refinement when the peak's bump is sampled.
+/// [`DEVIATION_SAMPLES_PER_PIECE`] uniform samples, however short it is (for polynomial curves
+/// of the one difference polynomial `s_old - s_new`), and every sampled local maximum within
+/// 10% of the best sample is then refined by golden-section search
+/// ([`DEVIATION_REFINEMENT_STEPS`] steps). A knot between two pieces counts as one place with
+/// a sample on either side. An estimate from below (every value is a real distance), exact to
+/// the refinement when the peak's bump is sampled.
 pub fn max_deviation(curve: &Curve, new_knots: &[f64], interval: (f64, f64)) -> f64 {
     let old_knots = curve.knots();
     let (p, end) = (curve.degree(), curve.control_points().len());
