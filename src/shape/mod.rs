@@ -7,6 +7,7 @@
 //! no HTTP, wire-format or logging types.
 
 mod candidate;
+mod deviation;
 mod pairs;
 mod regions;
 mod solve;
@@ -15,6 +16,7 @@ pub use candidate::{
     Candidate, DEGENERACY_TOLERANCE, Frame, NotApplicable, PLANE_TOLERANCE, Side, SideChoice,
     candidate, frame_to_point,
 };
+pub use deviation::{DEVIATION_RELATIVE_TOLERANCE, max_deviation};
 pub use pairs::{
     CLAMP_TOLERANCE, FRAME_ZERO_TOLERANCE, KNOT_TOLERANCE, KnotPair, LocalKnot, LocalKnots,
     solve_pair,
@@ -24,7 +26,6 @@ pub use regions::{
     frame_of, region_polygons,
 };
 pub use solve::{
-    CandidateOutcome, DEVIATION_REFINEMENT_STEPS, DEVIATION_SAMPLES_PER_PIECE, RESIDUAL_TOLERANCE,
-    RegionMembership, ShapeError, ShapeField, ShapeQuery, Solution, SolveOptions, SolveOutcome,
-    affected_domain, max_deviation, membership, solve, target_point,
+    CandidateOutcome, RESIDUAL_TOLERANCE, RegionMembership, ShapeError, ShapeField, ShapeQuery,
+    Solution, SolveOptions, SolveOutcome, affected_domain, membership, solve, target_point,
 };

@@ -35,6 +35,84 @@ impl Curve {
     }
 }
 
+impl Curve {
+    /// The homogeneous Bézier control points `B_0 ..= B_p` of the piece `[a, b]` of the curve
+    /// with this control net over the full knot vector `knots`, written to `out[0..=p]`:
+    /// `A(u) = Σ_i B_i C(p, i) s^i (1 - s)^(p-i)` with `s = (u - a) / (b - a)`, for the
+    /// homogeneous curve `A = (w x, w y, w z, w)`.
+    ///
+    /// `B_i` is the blossom `A[a, …, a, b, …, b]` (`p - i` times `a`, `i` times `b`): de Boor's
+    /// algorithm run with those arguments (The NURBS Book, §5; Ramshaw's blossoming). Every
+    /// de Boor weight lies in `[0, 1]`, so the points are convex combinations of the net.
+    ///
+    /// Preconditions as for [`Curve::point_with_knots`], and `a < b` inside one knot span
+    /// (the span that holds `a`, so `b <= ` the next knot). No allocation.
+    pub fn bezier_piece_with_knots(&self, knots: &[f64], a: f64, b: f64, out: &mut [[f64; 4]]) {
+        // Cubics (every shape request) get a copy compiled for degree 3 with 4 × 4 buffers.
+        if self.degree() == 3 {
+            self.bezier_piece_in::<4>(knots, a, b, 3, out);
+        } else {
+            self.bezier_piece_in::<CAP>(knots, a, b, self.degree(), out);
+        }
+    }
+
+    /// [`Curve::bezier_piece_with_knots`] for `p = degree` (the curve's) with `N`-sized
+    /// buffers (precondition `p < N`).
+    ///
+    /// The blossoms share work: `S_k` is the net after `k` de Boor levels with argument `a`
+    /// (`S_0` the net itself); `B_{p-k}` continues `S_k` with `p - k` levels of argument `b`.
+    /// For a cubic that is 16 blends instead of 24.
+    #[inline(always)]
+    fn bezier_piece_in<const N: usize>(
+        &self,
+        knots: &[f64],
+        a: f64,
+        b: f64,
+        degree: usize,
+        out: &mut [[f64; 4]],
+    ) {
+        debug_assert_eq!(degree, self.degree());
+        let p = degree;
+        let span = find_span(knots, p, a);
+        // Level k (1 <= k <= p) of de Boor's algorithm blends local points j - 1 and j
+        // (k <= j <= p) with weight (x - lower) / (upper - lower), where
+        // lower = u_{span-p+j} = below[j - 1] and upper = u_{span+1+j-k} = above[j - k].
+        let mut below = [0.0; N];
+        let mut above = [0.0; N];
+        below[..p].copy_from_slice(&knots[span + 1 - p..=span]);
+        above[..p].copy_from_slice(&knots[span + 1..=span + p]);
+        let lower = |j: usize| below[j - 1];
+        let upper = |j: usize, k: usize| above[j - k];
+        let mut reciprocal = [[0.0; N]; N];
+        for (k, row) in reciprocal.iter_mut().enumerate().take(p + 1).skip(1) {
+            for (j, value) in row.iter_mut().enumerate().take(p + 1).skip(k) {
+                *value = 1.0 / (upper(j, k) - lower(j));
+            }
+        }
+        let level = |points: &mut [[f64; 4]; N], k: usize, x: f64| {
+            for j in (k..=p).rev() {
+                let alpha = (x - lower(j)) * reciprocal[k][j];
+                let (before, current) = (points[j - 1], points[j]);
+                for c in 0..4 {
+                    points[j][c] = multiply_add(alpha, current[c] - before[c], before[c]);
+                }
+            }
+        };
+        let mut with_a = [[0.0; 4]; N];
+        with_a[..=p].copy_from_slice(&self.homogeneous()[span - p..=span]);
+        for k in 0..=p {
+            let mut blossom = with_a;
+            for later in k + 1..=p {
+                level(&mut blossom, later, b);
+            }
+            out[p - k] = blossom[p];
+            if k < p {
+                level(&mut with_a, k + 1, a);
+            }
+        }
+    }
+}
+
 /// One polynomial piece of a curve in power form about its left end: `A(s0 + h) =
 /// Σ_d coefficients[d] h^d` for the homogeneous curve `A = (w x, w y, w z, w)`.
 #[derive(Debug, Clone, Copy)]
@@ -64,31 +142,6 @@ impl PowerPiece {
         } else {
             [acc[0], acc[1], acc[2]]
         }
-    }
-
-    /// The polynomial piece `h ↦ self.point(h) - other.point(h)`, when neither piece is
-    /// rational (a difference of rational pieces is no polynomial: then `None`). Both pieces
-    /// must start at the same parameter.
-    pub fn difference(&self, other: &PowerPiece) -> Option<PowerPiece> {
-        if self.rational || other.rational {
-            return None;
-        }
-        let degree = self.degree.max(other.degree);
-        let mut coefficients = [[0.0; 4]; CAP];
-        for (d, difference) in coefficients.iter_mut().enumerate().take(degree + 1) {
-            let (mine, theirs) = (self.coefficients[d], other.coefficients[d]);
-            *difference = [
-                mine[0] - theirs[0],
-                mine[1] - theirs[1],
-                mine[2] - theirs[2],
-                0.0,
-            ];
-        }
-        Some(PowerPiece {
-            degree,
-            rational: false,
-            coefficients,
-        })
     }
 }
 
@@ -150,5 +203,84 @@ impl Curve {
             rational: self.is_rational(),
             coefficients,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::spline::CurveLimits;
+
+    /// De Casteljau on homogeneous Bézier points, projected.
+    fn bezier_point(points: &[[f64; 4]], s: f64) -> Point {
+        let mut work = points.to_vec();
+        for level in 1..points.len() {
+            for i in 0..points.len() - level {
+                let next = work[i + 1];
+                for (value, later) in work[i].iter_mut().zip(next) {
+                    *value = (1.0 - s) * *value + s * later;
+                }
+            }
+        }
+        let w = work[0][3];
+        [work[0][0] / w, work[0][1] / w, work[0][2] / w]
+    }
+
+    fn assert_pieces_match(curve: &Curve, knots: &[f64]) {
+        let p = curve.degree();
+        let domain = (knots[p], knots[knots.len() - p - 1]);
+        for span in p..knots.len() - p - 1 {
+            let (lo, hi) = (knots[span].max(domain.0), knots[span + 1].min(domain.1));
+            if hi <= lo {
+                continue;
+            }
+            // The whole span and a piece strictly inside it.
+            for (a, b) in [(lo, hi), (lo + 0.3 * (hi - lo), lo + 0.8 * (hi - lo))] {
+                let mut bezier = [[0.0; 4]; CAP];
+                curve.bezier_piece_with_knots(knots, a, b, &mut bezier);
+                for i in 0..=8 {
+                    let s = i as f64 / 8.0;
+                    let expected = curve.point_with_knots(knots, a + s * (b - a));
+                    let found = bezier_point(&bezier[..=p], s);
+                    for c in 0..3 {
+                        assert!(
+                            (found[c] - expected[c]).abs() < 1e-12,
+                            "span {span}, [{a}, {b}], s {s}: {found:?} vs {expected:?}"
+                        );
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn bezier_pieces_agree_with_the_basis_function_evaluator() {
+        let points: Vec<Vec<f64>> = [
+            [0.0, 0.0, 1.0],
+            [1.0, 3.0, -1.0],
+            [3.0, 4.0, 2.0],
+            [5.0, 3.5, 0.0],
+            [6.0, 1.0, 1.5],
+            [8.0, 0.0, -2.0],
+        ]
+        .iter()
+        .map(|p| p.to_vec())
+        .collect();
+        let knots = [0.0, 0.0, 0.0, 0.0, 0.3, 0.6, 1.0, 1.0, 1.0, 1.0];
+        let weights = [1.0, 0.5, 2.5, 1.0, 0.7, 1.2];
+        let limits = CurveLimits::default();
+        let rational = Curve::new(3, &points, &knots, Some(&weights), &limits).unwrap();
+        assert_pieces_match(&rational, &knots);
+        // Other knots over the same net (a double knot), and a quintic with unclamped knots.
+        assert_pieces_match(
+            &rational,
+            &[0.0, 0.0, 0.0, 0.0, 0.45, 0.45, 1.0, 1.0, 1.0, 1.0],
+        );
+        let quintic_knots: Vec<f64> = (0..14).map(|i| 0.1 * i as f64).collect();
+        let quintic_points: Vec<Vec<f64>> = (0..8)
+            .map(|i| vec![i as f64, ((i * 7) % 5) as f64])
+            .collect();
+        let quintic = Curve::new(5, &quintic_points, &quintic_knots, None, &limits).unwrap();
+        assert_pieces_match(&quintic, &quintic_knots);
     }
 }
