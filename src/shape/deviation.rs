@@ -75,8 +75,50 @@ pub fn max_deviation(curve: &Curve, new_knots: &[f64], interval: (f64, f64)) -> 
     if hi <= lo {
         return 0.0;
     }
-    let mut gaps = SquaredGaps::new(curve);
-    // Both knot vectors are sorted: merge their values inside (lo, hi), without repeats.
+    // Cubics (every shape request) get copies compiled for their exact sizes: 4 Bézier points,
+    // 7 coefficients (13 when rational).
+    let squared = match (p, curve.is_rational()) {
+        (3, false) => maximum_squared_gap::<4, 7>(curve, new_knots, lo, hi, false),
+        (3, true) => maximum_squared_gap::<4, 13>(curve, new_knots, lo, hi, true),
+        (_, rational) => maximum_squared_gap::<{ MAX_DEGREE + 1 }, { MAX_RATIO_DEGREE + 1 }>(
+            curve, new_knots, lo, hi, rational,
+        ),
+    };
+    squared.sqrt()
+}
+
+/// A part `[s0, s1]` of a piece in the search: the Bernstein coefficients of `N` and `D`
+/// there, the first `len` of `LEN` slots (`D` unused for polynomial curves).
+#[derive(Clone, Copy)]
+struct Interval<const LEN: usize> {
+    numerator: [f64; LEN],
+    denominator: [f64; LEN],
+    /// Halvings from the whole piece.
+    depth: u32,
+}
+
+/// The largest squared gap on `[lo, hi]` (module docs). `POINTS > p` and `LEN >=` the number
+/// of coefficients (`2p + 1`, or `4p + 1` when `rational`).
+#[inline(always)]
+fn maximum_squared_gap<const POINTS: usize, const LEN: usize>(
+    curve: &Curve,
+    new_knots: &[f64],
+    lo: f64,
+    hi: f64,
+    rational: bool,
+) -> f64 {
+    let p = curve.degree();
+    let len = if rational { 4 * p + 1 } else { 2 * p + 1 };
+    debug_assert!(p < POINTS && len <= LEN);
+    let old_knots = curve.knots();
+    // Both knot vectors are sorted: merge their values inside (lo, hi), without repeats;
+    // each piece between consecutive values becomes one interval of the search.
+    let mut stack: Vec<Interval<LEN>> = Vec::with_capacity(2 * (p + 2) + MAX_DEPTH as usize);
+    let mut push_piece = |a: f64, b: f64| {
+        stack.push(squared_gap_on_piece::<POINTS, LEN>(
+            curve, new_knots, a, b, len, rational,
+        ));
+    };
     let (mut i, mut k) = (0, 0);
     let mut start = lo;
     while i < old_knots.len() || k < new_knots.len() {
@@ -89,181 +131,136 @@ pub fn max_deviation(curve: &Curve, new_knots: &[f64], interval: (f64, f64)) -> 
             new_knots[k - 1]
         };
         if next > start && next < hi {
-            gaps.push_piece(curve, new_knots, start, next);
+            push_piece(start, next);
             start = next;
         }
     }
-    gaps.push_piece(curve, new_knots, start, hi);
-    gaps.maximum().sqrt()
-}
+    push_piece(start, hi);
 
-/// The squared gap on every piece, as Bernstein coefficients of `N` (then of `D`, for
-/// rational curves), and the branch-and-bound search for its maximum.
-struct SquaredGaps {
-    /// Degree of the curves.
-    degree: usize,
-    /// Whether the curves are rational (then `D` is stored after `N`).
-    rational: bool,
-    /// Number of coefficients of `N` (and of `D`): `2p + 1`, or `4p + 1` when rational.
-    len: usize,
-    /// Per piece: `N`'s coefficients, then `D`'s when rational.
-    pieces: Vec<f64>,
-    /// Squared gaps at most this count as zero: `(ZERO_GAP · net size)²`.
-    zero: f64,
-}
-
-impl SquaredGaps {
-    fn new(curve: &Curve) -> Self {
-        let degree = curve.degree();
-        let rational = curve.is_rational();
-        let len = if rational {
-            4 * degree + 1
-        } else {
-            2 * degree + 1
-        };
-        let size = curve
-            .control_points()
-            .iter()
-            .flatten()
-            .fold(0.0, |size: f64, coordinate| size.max(coordinate.abs()));
-        SquaredGaps {
-            degree,
-            rational,
-            len,
-            pieces: Vec::with_capacity(len * (if rational { 2 } else { 1 }) * (2 * degree + 4)),
-            zero: (ZERO_GAP * size) * (ZERO_GAP * size),
-        }
-    }
-
-    /// Entries per piece (and per search interval): `N`, then `D` when rational.
-    fn stride(&self) -> usize {
-        if self.rational {
-            2 * self.len
-        } else {
-            self.len
-        }
-    }
-
-    /// Adds the piece `[a, b]` (inside one span of both knot vectors).
-    ///
-    /// Products are formed in the scaled basis `s^k (1 - s)^(d-k)`, whose coefficients are
-    /// `C(d, k)` times the Bernstein ones: there a product is a plain convolution.
-    fn push_piece(&mut self, curve: &Curve, new_knots: &[f64], a: f64, b: f64) {
-        let p = self.degree;
-        let mut old = [[0.0; 4]; MAX_DEGREE + 1];
-        let mut new = [[0.0; 4]; MAX_DEGREE + 1];
-        curve.bezier_piece_with_knots(curve.knots(), a, b, &mut old);
-        curve.bezier_piece_with_knots(new_knots, a, b, &mut new);
-        for i in 0..=p {
-            let scale = BINOMIAL[p][i];
-            for c in 0..4 {
-                old[i][c] *= scale;
-                new[i][c] *= scale;
-            }
-        }
-        let start = self.pieces.len();
-        self.pieces.resize(start + self.stride(), 0.0);
-        let (numerator, denominator) = self.pieces[start..].split_at_mut(self.len);
-        if self.rational {
-            let column = |points: &[[f64; 4]], c: usize| -> [f64; MAX_DEGREE + 1] {
-                std::array::from_fn(|i| points[i][c])
-            };
-            let (old_w, new_w) = (column(&old, 3), column(&new, 3));
-            let mut cross = [0.0; 2 * MAX_DEGREE + 1];
-            let cross = &mut cross[..=2 * p];
-            for c in 0..3 {
-                // X_old W_new - X_new W_old, then its square into N.
-                cross.fill(0.0);
-                convolve(&column(&old, c)[..=p], &new_w[..=p], cross, 1.0);
-                convolve(&column(&new, c)[..=p], &old_w[..=p], cross, -1.0);
-                convolve(cross, cross, numerator, 1.0);
-            }
-            cross.fill(0.0);
-            convolve(&old_w[..=p], &new_w[..=p], cross, 1.0);
-            convolve(cross, cross, denominator, 1.0);
-            unscale(denominator);
-        } else {
-            for c in 0..3 {
-                let gap: [f64; MAX_DEGREE + 1] = std::array::from_fn(|i| old[i][c] - new[i][c]);
-                convolve(&gap[..=p], &gap[..=p], numerator, 1.0);
-            }
-        }
-        unscale(numerator);
-    }
-
-    /// The squared gap's value at the end `s = 0` (`first`) or `s = 1` of an interval.
-    fn end_value(&self, interval: &[f64], first: bool) -> f64 {
-        let index = if first { 0 } else { self.len - 1 };
-        let numerator = interval[index];
-        if self.rational {
-            numerator / interval[self.len + index]
+    let value_at = |interval: &Interval<LEN>, index: usize| {
+        let numerator = interval.numerator[index];
+        if rational {
+            numerator / interval.denominator[index]
         } else {
             numerator
         }
-    }
-
-    /// Whether the squared gap may exceed `bound` somewhere on the interval: some coefficient
-    /// of `N - bound · D` is positive. (NaN coefficients never count.)
-    fn may_exceed(&self, interval: &[f64], bound: f64) -> bool {
-        let (numerator, denominator) = interval.split_at(self.len);
-        if self.rational {
+    };
+    // Squared gaps at most this count as zero (rounding noise).
+    let size = curve
+        .control_points()
+        .iter()
+        .flatten()
+        .fold(0.0, |size: f64, coordinate| size.max(coordinate.abs()));
+    let zero = (ZERO_GAP * size) * (ZERO_GAP * size);
+    let mut best = stack
+        .iter()
+        .map(|interval| value_at(interval, 0).max(value_at(interval, len - 1)))
+        .fold(0.0, f64::max);
+    let mut halvings = 0;
+    // Depth-first, so the stack stays short.
+    while let Some(interval) = stack.pop() {
+        let bound = best * (1.0 + DEVIATION_RELATIVE_TOLERANCE) + zero;
+        // Whether the squared gap may exceed `bound`: some coefficient of N - bound D is
+        // positive (NaN never is).
+        let numerator = &interval.numerator[..len];
+        let may_exceed = if rational {
             numerator
                 .iter()
-                .zip(denominator)
+                .zip(&interval.denominator[..len])
                 .any(|(&n, &d)| n - bound * d > 0.0)
         } else {
             numerator.iter().any(|&n| n > bound)
+        };
+        if !may_exceed || interval.depth >= MAX_DEPTH || halvings >= MAX_HALVINGS {
+            continue;
         }
-    }
-
-    /// The largest squared gap over all pieces (module docs).
-    fn maximum(mut self) -> f64 {
-        let stride = self.stride();
-        let mut best = self
-            .pieces
-            .chunks_exact(stride)
-            .flat_map(|piece| [self.end_value(piece, true), self.end_value(piece, false)])
-            .fold(0.0, f64::max);
-        // Depth-first: a stack of intervals (their coefficients) and their depths.
-        let mut stack = std::mem::take(&mut self.pieces);
-        let mut depths = vec![0u32; stack.len() / stride];
-        const MAX_STRIDE: usize = 2 * (MAX_RATIO_DEGREE + 1);
-        let mut interval = [0.0; MAX_STRIDE];
-        let (mut left, mut right) = ([0.0; MAX_STRIDE], [0.0; MAX_STRIDE]);
-        let (interval, left, right) = (
-            &mut interval[..stride],
-            &mut left[..stride],
-            &mut right[..stride],
+        halvings += 1;
+        let (mut left, mut right) = (interval, interval);
+        left.depth += 1;
+        right.depth += 1;
+        halve(
+            &interval.numerator[..len],
+            &mut left.numerator[..len],
+            &mut right.numerator[..len],
         );
-        let mut halvings = 0;
-        while let Some(depth) = depths.pop() {
-            let top = stack.len() - stride;
-            interval.copy_from_slice(&stack[top..]);
-            stack.truncate(top);
-            let bound = best * (1.0 + DEVIATION_RELATIVE_TOLERANCE) + self.zero;
-            if !self.may_exceed(interval, bound) || depth >= MAX_DEPTH || halvings >= MAX_HALVINGS {
-                continue;
-            }
-            halvings += 1;
-            for part in 0..stride / self.len {
-                let range = part * self.len..(part + 1) * self.len;
-                halve(
-                    &interval[range.clone()],
-                    &mut left[range.clone()],
-                    &mut right[range],
-                );
-            }
-            best = best.max(self.end_value(left, false));
-            stack.extend_from_slice(right);
-            stack.extend_from_slice(left);
-            depths.extend([depth + 1, depth + 1]);
+        if rational {
+            halve(
+                &interval.denominator[..len],
+                &mut left.denominator[..len],
+                &mut right.denominator[..len],
+            );
         }
-        best
+        best = best.max(value_at(&left, len - 1));
+        stack.push(right);
+        stack.push(left);
     }
+    best
+}
+
+/// The squared gap on the piece `[a, b]` (inside one span of both knot vectors) as a search
+/// interval: `len` Bernstein coefficients of `N` and, when `rational`, of `D`.
+///
+/// Products are formed in the scaled basis `s^k (1 - s)^(d-k)`, whose coefficients are
+/// `C(d, k)` times the Bernstein ones: there a product is a plain convolution.
+#[inline(always)]
+fn squared_gap_on_piece<const POINTS: usize, const LEN: usize>(
+    curve: &Curve,
+    new_knots: &[f64],
+    a: f64,
+    b: f64,
+    len: usize,
+    rational: bool,
+) -> Interval<LEN> {
+    let p = curve.degree();
+    let mut old = [[0.0; 4]; POINTS];
+    let mut new = [[0.0; 4]; POINTS];
+    curve.bezier_piece_with_knots(curve.knots(), a, b, &mut old);
+    curve.bezier_piece_with_knots(new_knots, a, b, &mut new);
+    for i in 0..p + 1 {
+        let scale = BINOMIAL[p][i];
+        for c in 0..4 {
+            old[i][c] *= scale;
+            new[i][c] *= scale;
+        }
+    }
+    let mut interval = Interval {
+        numerator: [0.0; LEN],
+        denominator: [0.0; LEN],
+        depth: 0,
+    };
+    let numerator = &mut interval.numerator[..len];
+    if rational {
+        let column = |points: &[[f64; 4]; POINTS], c: usize| -> [f64; POINTS] {
+            std::array::from_fn(|i| points[i][c])
+        };
+        let (old_w, new_w) = (column(&old, 3), column(&new, 3));
+        let mut cross = [0.0; LEN];
+        let cross = &mut cross[..2 * p + 1];
+        for c in 0..3 {
+            // X_old W_new - X_new W_old, then its square into N.
+            cross.fill(0.0);
+            convolve(&column(&old, c)[..p + 1], &new_w[..p + 1], cross, 1.0);
+            convolve(&column(&new, c)[..p + 1], &old_w[..p + 1], cross, -1.0);
+            convolve(cross, cross, numerator, 1.0);
+        }
+        cross.fill(0.0);
+        convolve(&old_w[..p + 1], &new_w[..p + 1], cross, 1.0);
+        let denominator = &mut interval.denominator[..len];
+        convolve(cross, cross, denominator, 1.0);
+        unscale(denominator);
+    } else {
+        for c in 0..3 {
+            let gap: [f64; POINTS] = std::array::from_fn(|i| old[i][c] - new[i][c]);
+            convolve(&gap[..p + 1], &gap[..p + 1], numerator, 1.0);
+        }
+    }
+    unscale(&mut interval.numerator[..len]);
+    interval
 }
 
 /// `out += sign · a * b` (convolution: `out_k += sign Σ_{i+j=k} a_i b_j`), the product of two
 /// polynomials in the scaled Bernstein basis; `out` has `a.len() + b.len() - 1` entries.
+#[inline(always)]
 fn convolve(a: &[f64], b: &[f64], out: &mut [f64], sign: f64) {
     debug_assert_eq!(out.len(), a.len() + b.len() - 1);
     for (i, &a_i) in a.iter().enumerate() {
@@ -275,6 +272,7 @@ fn convolve(a: &[f64], b: &[f64], out: &mut [f64], sign: f64) {
 }
 
 /// Scaled-basis coefficients (`C(d, k)` times the Bernstein ones) to Bernstein coefficients.
+#[inline(always)]
 fn unscale(coefficients: &mut [f64]) {
     let degree = coefficients.len() - 1;
     for (k, value) in coefficients.iter_mut().enumerate() {
@@ -284,12 +282,13 @@ fn unscale(coefficients: &mut [f64]) {
 
 /// Splits a Bernstein polynomial on `[0, 1]` at `1/2` (de Casteljau): `left` and `right` get
 /// the coefficients of its halves, each again on `[0, 1]`.
+#[inline(always)]
 fn halve(coefficients: &[f64], left: &mut [f64], right: &mut [f64]) {
     let n = coefficients.len() - 1;
     right.copy_from_slice(coefficients);
     left[0] = coefficients[0];
     for (level, first) in left.iter_mut().enumerate().skip(1) {
-        for i in 0..=n - level {
+        for i in 0..n - level + 1 {
             right[i] = 0.5 * (right[i] + right[i + 1]);
         }
         *first = right[0];

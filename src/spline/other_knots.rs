@@ -90,7 +90,7 @@ impl Curve {
             }
         }
         let level = |points: &mut [[f64; 4]; N], k: usize, x: f64| {
-            for j in (k..=p).rev() {
+            for j in (k..p + 1).rev() {
                 let alpha = (x - lower(j)) * reciprocal[k][j];
                 let (before, current) = (points[j - 1], points[j]);
                 for c in 0..4 {
@@ -100,9 +100,9 @@ impl Curve {
         };
         let mut with_a = [[0.0; 4]; N];
         with_a[..=p].copy_from_slice(&self.homogeneous()[span - p..=span]);
-        for k in 0..=p {
+        for k in 0..p + 1 {
             let mut blossom = with_a;
-            for later in k + 1..=p {
+            for later in k + 1..p + 1 {
                 level(&mut blossom, later, b);
             }
             out[p - k] = blossom[p];
