@@ -144,6 +144,16 @@ impl ApiError {
         ApiError::Invalid(vec![FieldError::new(pointer, detail)])
     }
 
+    /// The 422 for an answer with a non-finite number (JSON has none): only inputs of extreme
+    /// magnitude (coordinates near 1e300, weights near 1e-300) overflow so.
+    pub fn non_finite_result() -> Self {
+        ApiError::invalid(
+            "/curve",
+            "the result is not finite: the curve's coordinates or weights are too extreme for \
+             double precision",
+        )
+    }
+
     /// The HTTP status code.
     pub fn status(&self) -> StatusCode {
         match self {

@@ -67,12 +67,7 @@ impl<T: Serialize> IntoResponse for ApiJson<T> {
             Ok(bytes) if !has_non_finite(&bytes) => {
                 ([(CONTENT_TYPE, "application/json")], bytes).into_response()
             }
-            Ok(_) => ApiError::invalid(
-                "/curve",
-                "the result is not finite: the curve's coordinates or weights are too extreme \
-                 for double precision",
-            )
-            .into_response(),
+            Ok(_) => ApiError::non_finite_result().into_response(),
             Err(error) => {
                 ApiError::Internal(format!("response serialization: {error}")).into_response()
             }

@@ -515,3 +515,56 @@ async fn polygon_size_is_bounded_by_the_vertex_limit() {
         "a curved boundary cannot meet 1e-300 within 128 vertices"
     );
 }
+
+/// `/v1/shape/solve` writes its answer directly (`SolveResponse::to_json`); the bytes must be
+/// exactly what serde's derive writes for the same values: the answer parsed into the typed
+/// response and serialized again by `serde_json`. Targets made by known pairs (2D, rational 3D,
+/// full and trimmed knots, one side or both), picks near the ends (sides that do not apply,
+/// with a `reason`) and unreachable targets.
+#[tokio::test]
+async fn solve_answers_are_byte_for_byte_what_serde_writes() {
+    use knotshape::http::routes::shape::SolveResponse;
+    let app = spawn_app().await;
+    let mut rng = Lcg(31);
+    let mut requests = Vec::new();
+    for curve in [cubic_2d(), crate::reference::rational_3d()] {
+        for round in 0..40 {
+            let trimmed = round % 2 == 1;
+            let Some((_, side, _, target, t)) = made_target(&curve, &mut rng) else {
+                continue;
+            };
+            let side = if round % 3 == 0 { "both" } else { side };
+            requests.push(json!({"curve": curve.to_json(trimmed), "parameter": t,
+                                 "target": target, "side": side}));
+        }
+        let (lo, hi) = curve.domain();
+        let far: Vec<f64> = curve.point(lo).iter().map(|x| x + 50.0).collect();
+        for t in [lo, lo + 1e-3 * (hi - lo), hi] {
+            requests.push(json!({"curve": curve.to_json(false), "parameter": t, "target": far}));
+        }
+    }
+    let mut with_reason = 0;
+    let mut with_solutions = 0;
+    for request in &requests {
+        let response = app.post("/v1/shape/solve", request).await;
+        assert_eq!(response.status(), 200, "{request}");
+        let body = response.bytes().await.unwrap();
+        let typed: SolveResponse = serde_json::from_slice(&body).unwrap();
+        let expected = serde_json::to_vec(&typed).unwrap();
+        assert_eq!(
+            String::from_utf8_lossy(&body),
+            String::from_utf8_lossy(&expected),
+            "{request}"
+        );
+        with_reason += typed
+            .candidates
+            .iter()
+            .filter(|c| c.candidate.reason.is_some())
+            .count();
+        with_solutions += usize::from(!typed.solutions.is_empty());
+    }
+    assert!(
+        with_reason > 0 && with_solutions > 10,
+        "{with_reason} {with_solutions}"
+    );
+}

@@ -12,6 +12,7 @@ use crate::config::Limits;
 use crate::http::curve::{CurveBody, WirePoint, point_to_wire};
 use crate::http::error::{ApiError, FieldError, Problem};
 use crate::http::extract::ApiJson;
+use crate::http::json_out::JsonOut;
 use crate::http::middleware::AdmissionPermit;
 use crate::http::pointer::JsonPointer;
 use crate::http::state::AppState;
@@ -62,6 +63,16 @@ pub enum CandidateSide {
     Left,
 }
 
+impl CandidateSide {
+    /// The name on the wire (as serde writes it).
+    pub fn wire_name(self) -> &'static str {
+        match self {
+            CandidateSide::Right => "right",
+            CandidateSide::Left => "left",
+        }
+    }
+}
+
 impl From<Side> for CandidateSide {
     fn from(side: Side) -> Self {
         match side {
@@ -88,6 +99,20 @@ pub enum Region {
     Omega5,
     /// `(b, e) = (v_j, v_{j+2})` move (paper §3.2.3).
     Omega6,
+}
+
+impl Region {
+    /// The name on the wire (as serde writes it).
+    pub fn wire_name(self) -> &'static str {
+        match self {
+            Region::Omega1 => "omega1",
+            Region::Omega2 => "omega2",
+            Region::Omega3 => "omega3",
+            Region::Omega4 => "omega4",
+            Region::Omega5 => "omega5",
+            Region::Omega6 => "omega6",
+        }
+    }
 }
 
 impl From<Region> for KnotPair {
@@ -310,6 +335,83 @@ pub struct SolveResponse {
     pub solutions: Vec<SolutionBody>,
 }
 
+impl SolveResponse {
+    /// The answer as JSON text, byte for byte what its `Serialize` derive gives (a test
+    /// checks), without escaping the constant keys: this is the service's hottest answer.
+    pub fn to_json(&self) -> JsonOut {
+        let mut out = JsonOut::with_capacity(SOLVE_ANSWER_CAPACITY);
+        out.raw("{\"reachable\":");
+        out.bool(self.reachable);
+        out.raw(",\"candidates\":");
+        out.array(&self.candidates, |out, entry| {
+            let candidate = &entry.candidate;
+            out.raw("{\"side\":\"");
+            out.raw(candidate.side.wire_name());
+            out.raw("\",\"applicable\":");
+            out.bool(candidate.applicable);
+            if let Some(reason) = &candidate.reason {
+                out.raw(",\"reason\":");
+                out.string(reason);
+            }
+            out.raw(",\"span\":");
+            out.usize(candidate.span);
+            out.raw(",\"moved_knot\":");
+            out.usize(candidate.moved_knot);
+            if let Some(triangle) = &candidate.triangle {
+                out.raw(",\"triangle\":");
+                out.array(triangle, |out, point| out.f64s(point.as_slice()));
+            }
+            if let Some(frame) = &candidate.frame {
+                out.raw(",\"frame\":{\"x\":");
+                out.f64(frame.x);
+                out.raw(",\"y\":");
+                out.f64(frame.y);
+                out.raw("}");
+            }
+            out.raw(",\"regions\":");
+            out.array(&entry.regions, |out, membership| {
+                out.raw("{\"region\":\"");
+                out.raw(membership.region.wire_name());
+                out.raw("\",\"knots\":");
+                out.usizes(&membership.knots);
+                out.raw(",\"contains\":");
+                out.bool(membership.contains);
+                out.raw("}");
+            });
+            out.raw("}");
+        });
+        out.raw(",\"solutions\":");
+        out.array(&self.solutions, |out, solution| {
+            out.raw("{\"region\":\"");
+            out.raw(solution.region.wire_name());
+            out.raw("\",\"side\":\"");
+            out.raw(solution.side.wire_name());
+            out.raw("\",\"span\":");
+            out.usize(solution.span);
+            out.raw(",\"moved_knot\":");
+            out.usize(solution.moved_knot);
+            out.raw(",\"changed_knots\":");
+            out.usizes(&solution.changed_knots);
+            out.raw(",\"knots\":");
+            out.f64s(&solution.knots);
+            out.raw(",\"point\":");
+            out.f64s(solution.point.as_slice());
+            out.raw(",\"residual\":");
+            out.f64(solution.residual);
+            out.raw(",\"affected_domain\":");
+            out.f64s(&solution.affected_domain);
+            out.raw(",\"max_deviation\":");
+            out.f64(solution.max_deviation);
+            out.raw("}");
+        });
+        out.raw("}");
+        out
+    }
+}
+
+/// Initial capacity of a solve answer's text (a typical one is about 1.3 kB).
+const SOLVE_ANSWER_CAPACITY: usize = 2048;
+
 /// One region's boundary.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
 #[schema(example = json!({"region": "omega2", "knots": [4, 6],
@@ -417,7 +519,7 @@ pub async fn solve(
     State(state): State<AppState>,
     admission: Option<Extension<AdmissionPermit>>,
     ApiJson(request): ApiJson<ShapeRequest>,
-) -> Result<ApiJson<SolveResponse>, ApiError> {
+) -> Result<JsonOut, ApiError> {
     let curve_limits = state.curve_limits;
     // Validation is linear in the control points; the method itself is local and bounded.
     let work = request.curve.control_points.len();
@@ -454,14 +556,14 @@ pub async fn solve(
                 max_deviation: solution.max_deviation.unwrap_or(0.0),
             })
             .collect();
-        Ok(SolveResponse {
+        let response = SolveResponse {
             reachable: outcome.reachable(),
             candidates: membership_candidates(curve, &outcome),
             solutions,
-        })
+        };
+        Ok(response.to_json())
     })
     .await
-    .map(ApiJson)
 }
 
 /// The regions' boundary polygons.
