@@ -1,11 +1,16 @@
 //! The wire form of a curve and its one-time conversion into the core's validated [`Curve`].
 
 use serde::{Deserialize, Serialize};
+use smallvec::SmallVec;
 use utoipa::ToSchema;
 
 use super::error::{ApiError, FieldError};
 use super::pointer::JsonPointer;
 use crate::spline::{Curve, CurveError, CurveField, CurveLimits, Dimension, Point};
+
+/// A control point as sent: its coordinates, inline up to three (no allocation per point);
+/// more (an error the curve's validation names) spill to the heap.
+pub type WireCoordinates = SmallVec<[f64; 3]>;
 
 /// A B-spline or NURBS curve as sent and received.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
@@ -21,8 +26,8 @@ pub struct CurveBody {
     #[schema(minimum = 1, example = 3)]
     pub degree: usize,
     /// At least `degree + 1` control points, all 2D (`[x, y]`) or all 3D (`[x, y, z]`).
-    #[schema(example = json!([[0, 0], [1, 2], [3, 2], [4, 0], [5, 1]]))]
-    pub control_points: Vec<Vec<f64>>,
+    #[schema(value_type = Vec<Vec<f64>>, example = json!([[0, 0], [1, 2], [3, 2], [4, 0], [5, 1]]))]
+    pub control_points: Vec<WireCoordinates>,
     /// Non-decreasing knots: the full vector (`control_points + degree + 1` values) or the
     /// openNURBS/Rhino vector without its two end values (`control_points + degree - 1`),
     /// detected by length. Answers use the same convention.
@@ -56,7 +61,7 @@ impl CurveBody {
             control_points: curve
                 .control_points()
                 .iter()
-                .map(|point| point[..dimension.count()].to_vec())
+                .map(|point| WireCoordinates::from_slice(&point[..dimension.count()]))
                 .collect(),
             knots: curve.knots_in_convention().to_vec(),
             weights: curve.weights().map(<[f64]>::to_vec),

@@ -203,7 +203,7 @@ impl Curve {
     /// end knots have no effect); a non-empty domain `u_p < u_{n+1}`.
     pub fn new(
         degree: usize,
-        control_points: &[Vec<f64>],
+        control_points: &[impl AsRef<[f64]>],
         knots: &[f64],
         weights: Option<&[f64]>,
         limits: &CurveLimits,
@@ -232,7 +232,7 @@ impl Curve {
                 max: limits.max_control_points,
             });
         }
-        let expected = control_points[0].len();
+        let expected = control_points[0].as_ref().len();
         let dimension = match expected {
             2 => Dimension::Two,
             3 => Dimension::Three,
@@ -246,6 +246,7 @@ impl Curve {
         };
         let mut points = Vec::with_capacity(count);
         for (index, raw) in control_points.iter().enumerate() {
+            let raw = raw.as_ref();
             if raw.len() != expected {
                 return Err(CurveError::WrongDimension {
                     index,
