@@ -568,3 +568,55 @@ async fn solve_answers_are_byte_for_byte_what_serde_writes() {
         "{with_reason} {with_solutions}"
     );
 }
+
+/// Numbers are read exactly and written as the shortest text that reads back the same: the
+/// knots a solution leaves alone come back as the very text that was sent, even for values
+/// whose correctly rounded reading needs all 17 digits (a fast, inexact reader is one unit in
+/// the last place off for `0.45895123948091443`: 45895123948091443 / 10^17 in doubles).
+#[tokio::test]
+async fn unchanged_knots_come_back_bit_for_bit() {
+    let app = spawn_app().await;
+    let hard = "0.45895123948091443";
+    let mut curve = cubic_2d();
+    curve.knots[5] = hard.parse().unwrap();
+    let mut rng = Lcg(7);
+    let mut checked = 0;
+    for _ in 0..200 {
+        let Some((_, side, knots, target, t)) = made_target(&curve, &mut rng) else {
+            continue;
+        };
+        if knots[5] != curve.knots[5] {
+            continue;
+        }
+        let request = json!({"curve": curve.to_json(false), "parameter": t, "target": target,
+                             "side": side, "keep_domain": false});
+        let body = request.to_string();
+        assert_eq!(knot_texts(&body)[0][5], hard);
+        let response = app.post("/v1/shape/solve", &request).await;
+        assert_eq!(response.status(), 200);
+        let answer = response.text().await.unwrap();
+        let solutions = &answer[answer.find("\"solutions\"").unwrap()..];
+        for returned in knot_texts(solutions) {
+            if returned[5] != hard {
+                assert_ne!(
+                    returned[5].parse::<f64>().unwrap(),
+                    curve.knots[5],
+                    "{answer}"
+                );
+                continue; // this solution moved knot 5
+            }
+            checked += 1;
+        }
+    }
+    assert!(checked > 5, "only {checked} solutions kept knot 5");
+}
+
+/// The texts of the numbers in every `"knots":[...]` array of a JSON text.
+fn knot_texts(json: &str) -> Vec<Vec<&str>> {
+    json.match_indices("\"knots\":[")
+        .map(|(at, key)| {
+            let rest = &json[at + key.len()..];
+            rest[..rest.find(']').unwrap()].split(',').collect()
+        })
+        .collect()
+}
