@@ -76,7 +76,7 @@ impl<T: Serialize> IntoResponse for ApiJson<T> {
 }
 
 /// Initial capacity of a response body buffer, in bytes.
-const RESPONSE_CAPACITY: usize = 2048;
+pub const RESPONSE_CAPACITY: usize = 2048;
 
 /// Whether serialized JSON holds a `null` value (serde writes non-finite numbers as `null`;
 /// the service's responses never use `null` otherwise). A byte scan first; a `null` inside a

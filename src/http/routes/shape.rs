@@ -11,7 +11,7 @@ use super::compute;
 use crate::config::Limits;
 use crate::http::curve::{CurveBody, WirePoint, point_to_wire};
 use crate::http::error::{ApiError, FieldError, Problem};
-use crate::http::extract::ApiJson;
+use crate::http::extract::{ApiJson, RESPONSE_CAPACITY};
 use crate::http::json_out::JsonOut;
 use crate::http::middleware::AdmissionPermit;
 use crate::http::pointer::JsonPointer;
@@ -339,7 +339,7 @@ impl SolveResponse {
     /// The answer as JSON text, byte for byte what its `Serialize` derive gives (a test
     /// checks), without escaping the constant keys: this is the service's hottest answer.
     pub fn to_json(&self) -> JsonOut {
-        let mut out = JsonOut::with_capacity(SOLVE_ANSWER_CAPACITY);
+        let mut out = JsonOut::with_capacity(RESPONSE_CAPACITY);
         out.raw("{\"reachable\":");
         out.bool(self.reachable);
         out.raw(",\"candidates\":");
@@ -408,9 +408,6 @@ impl SolveResponse {
         out
     }
 }
-
-/// Initial capacity of a solve answer's text (a typical one is about 1.3 kB).
-const SOLVE_ANSWER_CAPACITY: usize = 2048;
 
 /// One region's boundary.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
