@@ -49,8 +49,15 @@ impl JsonOut {
 
     /// A number: the shortest text that reads back as `value`; `null` (and remembered, see
     /// [`JsonOut::into_response`]) when it is not finite.
+    ///
+    /// Whole numbers below `2^53` in magnitude (clamped knots, grid points) take a shortcut:
+    /// every such number is a double, so its shortest text is its digits, which `serde_json`
+    /// writes as `{digits}.0`; `itoa` writes them without `zmij`'s table lookups.
     pub fn f64(&mut self, value: f64) {
-        if value.is_finite() {
+        if let Some(whole) = exact_whole_number(value) {
+            self.raw(itoa::Buffer::new().format(whole));
+            self.raw(".0");
+        } else if value.is_finite() {
             self.raw(zmij::Buffer::new().format_finite(value));
         } else {
             self.non_finite = true;
@@ -84,6 +91,18 @@ impl JsonOut {
     pub fn as_bytes(&self) -> &[u8] {
         &self.bytes
     }
+}
+
+/// `value` as an integer when it is a whole number with `|value| < 2^53` other than `-0.0`
+/// (which must keep its sign), else `None`.
+#[inline]
+fn exact_whole_number(value: f64) -> Option<i64> {
+    const TWO_POW_53: f64 = 9_007_199_254_740_992.0;
+    // In range, the cast is exact for whole numbers and truncates the others (NaN fails the
+    // range test).
+    let whole = value as i64;
+    (value.abs() < TWO_POW_53 && whole as f64 == value && !(whole == 0 && value.is_sign_negative()))
+        .then_some(whole)
 }
 
 /// As a response, the rules of [`super::extract::ApiJson`]: `application/json`, unless a
@@ -120,6 +139,46 @@ mod tests {
         );
         assert_eq!(std::str::from_utf8(out.as_bytes()).unwrap(), expected);
         assert!(!out.non_finite);
+    }
+
+    #[test]
+    fn whole_numbers_read_as_serde_json_writes_them() {
+        const TWO_POW_53: f64 = 9_007_199_254_740_992.0;
+        let mut values = vec![0.0, -0.0, 1.0, -1.0, 10.0, 1e15, -1e15, 1234500.0];
+        values.extend([
+            TWO_POW_53 - 1.0,
+            -(TWO_POW_53 - 1.0),
+            TWO_POW_53,
+            -TWO_POW_53,
+        ]);
+        values.extend([
+            TWO_POW_53 + 2.0,
+            1e16,
+            1e17,
+            2.0f64.powi(63),
+            -(2.0f64.powi(63)),
+        ]);
+        values.extend([0.5, -0.5, 1.0 - f64::EPSILON, 4503599627370495.5]);
+        // A deterministic spread over every magnitude up to 2^60 (xorshift).
+        let mut state = 0x9E37_79B9_7F4A_7C15_u64;
+        for _ in 0..20_000 {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            let magnitude = (state >> 4) >> (state % 60);
+            let sign = if state & 1 == 0 { 1.0 } else { -1.0 };
+            values.push(sign * magnitude as f64);
+            values.push(sign * magnitude as f64 / 8.0);
+        }
+        for value in values {
+            let mut out = JsonOut::with_capacity(0);
+            out.f64(value);
+            assert_eq!(
+                std::str::from_utf8(out.as_bytes()).unwrap(),
+                serde_json::to_string(&value).unwrap(),
+                "{value:e}"
+            );
+        }
     }
 
     #[test]
