@@ -3,7 +3,10 @@
 //! 404/405 fallbacks.
 
 use std::any::Any;
+use std::convert::Infallible;
+use std::future::{Ready, ready};
 use std::sync::Arc;
+use std::task::{Context, Poll};
 use std::time::{Duration, Instant};
 
 use axum::body::Body;
@@ -11,8 +14,10 @@ use axum::extract::{MatchedPath, Request, State};
 use axum::http::{HeaderValue, Method, StatusCode, Uri, header};
 use axum::middleware::Next;
 use axum::response::{IntoResponse, Response};
+use futures_util::future::Either;
 use subtle::ConstantTimeEq;
 use tokio::sync::OwnedSemaphorePermit;
+use tower::{Layer, Service};
 use tower_http::catch_panic::ResponseForPanic;
 use tracing::Span;
 
@@ -23,15 +28,61 @@ use super::state::AppState;
 /// The gate of every `/v1` request, one layer: first the API key ([`check_api_key`], 401),
 /// then admission ([`admit`], 503). The admission permit rides along in the request's
 /// extensions as an [`AdmissionPermit`].
-pub async fn guard_v1(
-    State(state): State<AppState>,
-    mut request: Request,
-    next: Next,
-) -> Result<Response, ApiError> {
-    check_api_key(&state, &request)?;
-    let permit = admit(&state)?;
-    request.extensions_mut().insert(permit);
-    Ok(next.run(request).await)
+///
+/// A plain [`Layer`] rather than `axum::middleware::from_fn`: the check is synchronous, so
+/// the route is called directly, without the per-request clone of the boxed route and the
+/// boxed future that `from_fn` costs.
+#[derive(Debug, Clone)]
+pub struct GuardV1Layer {
+    state: AppState,
+}
+
+impl GuardV1Layer {
+    /// The gate for routes served with `state`.
+    pub fn new(state: AppState) -> Self {
+        GuardV1Layer { state }
+    }
+}
+
+impl<S> Layer<S> for GuardV1Layer {
+    type Service = GuardV1<S>;
+
+    fn layer(&self, inner: S) -> GuardV1<S> {
+        GuardV1 {
+            inner,
+            state: self.state.clone(),
+        }
+    }
+}
+
+/// The service of [`GuardV1Layer`] around one route.
+#[derive(Debug, Clone)]
+pub struct GuardV1<S> {
+    inner: S,
+    state: AppState,
+}
+
+impl<S> Service<Request> for GuardV1<S>
+where
+    S: Service<Request, Response = Response, Error = Infallible>,
+{
+    type Response = Response;
+    type Error = Infallible;
+    type Future = Either<Ready<Result<Response, Infallible>>, S::Future>;
+
+    fn poll_ready(&mut self, cx: &mut Context<'_>) -> Poll<Result<(), Infallible>> {
+        self.inner.poll_ready(cx)
+    }
+
+    fn call(&mut self, mut request: Request) -> Self::Future {
+        match check_api_key(&self.state, &request).and_then(|()| admit(&self.state)) {
+            Ok(permit) => {
+                request.extensions_mut().insert(permit);
+                Either::Right(self.inner.call(request))
+            }
+            Err(refusal) => Either::Left(ready(Ok(refusal.into_response()))),
+        }
+    }
 }
 
 /// Refuses a request without the configured API key (401); passes all when none is set.

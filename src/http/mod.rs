@@ -49,10 +49,7 @@ pub fn app_with_readiness(config: &Config, readiness: Readiness) -> Router {
     let openapi_json: Arc<str> = openapi_json().into();
     let state = AppState::new(config, readiness, openapi_json);
 
-    let v1 = v1_routes().route_layer(axum::middleware::from_fn_with_state(
-        state.clone(),
-        middleware::guard_v1,
-    ));
+    let v1 = v1_routes().route_layer(middleware::GuardV1Layer::new(state.clone()));
     let (router, _) = OpenApiRouter::with_openapi(ApiDoc::openapi())
         .merge(v1)
         .merge(ops_routes())
