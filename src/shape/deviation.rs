@@ -107,35 +107,45 @@ fn maximum_squared_gap<const POINTS: usize, const LEN: usize>(
     hi: f64,
     rational: bool,
 ) -> f64 {
-    let p = curve.degree();
+    // For cubics a constant (`POINTS` is 4 only for them), so that the loops over the
+    // coefficients have fixed trip counts.
+    let p = if POINTS == 4 { 3 } else { curve.degree() };
+    debug_assert_eq!(p, curve.degree());
     let len = if rational { 4 * p + 1 } else { 2 * p + 1 };
     debug_assert!(p < POINTS && len <= LEN);
     let old_knots = curve.knots();
     // Both knot vectors are sorted: merge their values inside (lo, hi), without repeats;
     // each piece between consecutive values becomes one interval of the search.
     let mut stack: Vec<Interval<LEN>> = Vec::with_capacity(2 * (p + 2) + MAX_DEPTH as usize);
-    let mut push_piece = |a: f64, b: f64| {
-        stack.push(squared_gap_on_piece::<POINTS, LEN>(
-            curve, new_knots, a, b, len, rational,
-        ));
-    };
+    let mut old_pieces = PieceCursor::<POINTS>::new(curve, old_knots);
+    let mut new_pieces = PieceCursor::<POINTS>::new(curve, new_knots);
     let (mut i, mut k) = (0, 0);
     let mut start = lo;
-    while i < old_knots.len() || k < new_knots.len() {
-        let next = if k >= new_knots.len() || (i < old_knots.len() && old_knots[i] <= new_knots[k])
-        {
+    loop {
+        // The piece ends at the first value of either vector above its start, or at `hi`.
+        while i < old_knots.len() && old_knots[i] <= start {
             i += 1;
-            old_knots[i - 1]
-        } else {
-            k += 1;
-            new_knots[k - 1]
-        };
-        if next > start && next < hi {
-            push_piece(start, next);
-            start = next;
         }
+        while k < new_knots.len() && new_knots[k] <= start {
+            k += 1;
+        }
+        let mut end = hi;
+        if let Some(&knot) = old_knots.get(i) {
+            end = end.min(knot);
+        }
+        if let Some(&knot) = new_knots.get(k) {
+            end = end.min(knot);
+        }
+        let old = old_pieces.next(start, end, p);
+        let new = new_pieces.next(start, end, p);
+        stack.push(squared_gap_on_piece::<POINTS, LEN>(
+            p, old, new, len, rational,
+        ));
+        if end >= hi {
+            break;
+        }
+        start = end;
     }
-    push_piece(start, hi);
 
     let value_at = |interval: &Interval<LEN>, index: usize| {
         let numerator = interval.numerator[index];
@@ -197,25 +207,90 @@ fn maximum_squared_gap<const POINTS: usize, const LEN: usize>(
     best
 }
 
-/// The squared gap on the piece `[a, b]` (inside one span of both knot vectors) as a search
-/// interval: `len` Bernstein coefficients of `N` and, when `rational`, of `D`.
+/// The Bézier pieces of one curve (a control net over one knot vector) on consecutive
+/// intervals, left to right. Each knot span is extracted once, from the first interval's
+/// start to the span's end (blossoming, [`Curve::bezier_span_rest_with_knots`]), and cut at
+/// the ends of the intervals inside it (de Casteljau, a fraction of an extraction's cost): a
+/// span of the old vector holds several pieces where the new vector has knots inside it.
+struct PieceCursor<'a, const POINTS: usize> {
+    curve: &'a Curve,
+    knots: &'a [f64],
+    /// The Bézier points of the span's rest `[start, end]`, not yet handed out.
+    rest: [[f64; 4]; POINTS],
+    start: f64,
+    end: f64,
+}
+
+impl<'a, const POINTS: usize> PieceCursor<'a, POINTS> {
+    fn new(curve: &'a Curve, knots: &'a [f64]) -> Self {
+        PieceCursor {
+            curve,
+            knots,
+            rest: [[0.0; 4]; POINTS],
+            start: f64::NEG_INFINITY,
+            end: f64::NEG_INFINITY,
+        }
+    }
+
+    /// The Bézier points (homogeneous) of the piece `[a, b]`; `p` is the curve's degree.
+    ///
+    /// Preconditions: `a < b` inside one span of `knots` and inside the domain; `a` is the
+    /// previous call's `b` (or the first call's start).
+    #[inline(always)]
+    fn next(&mut self, a: f64, b: f64, p: usize) -> [[f64; 4]; POINTS] {
+        if a >= self.end {
+            self.end = self
+                .curve
+                .bezier_span_rest_with_knots(self.knots, a, &mut self.rest);
+            self.start = a;
+        }
+        debug_assert!(a == self.start && b <= self.end);
+        if b >= self.end {
+            self.start = self.end;
+            return self.rest;
+        }
+        let mut piece = [[0.0; 4]; POINTS];
+        split_bezier(
+            &mut self.rest[..=p],
+            (b - a) / (self.end - a),
+            &mut piece[..=p],
+        );
+        self.start = b;
+        piece
+    }
+}
+
+/// Splits the Bézier curve with control points `points` at parameter `s` in `(0, 1)` (de
+/// Casteljau): `left` gets the points of `[0, s]`, `points` become those of `[s, 1]`.
+#[inline(always)]
+fn split_bezier(points: &mut [[f64; 4]], s: f64, left: &mut [[f64; 4]]) {
+    let n = points.len() - 1;
+    left[0] = points[0];
+    for level in 1..=n {
+        for i in 0..=n - level {
+            let (current, next) = (points[i], points[i + 1]);
+            for c in 0..4 {
+                points[i][c] = current[c] + s * (next[c] - current[c]);
+            }
+        }
+        left[level] = points[0];
+    }
+}
+
+/// The squared gap on a piece where the old curve has the Bézier points `old` and the new
+/// one `new` (degree `p`), as a search interval: `len` Bernstein coefficients of `N` and,
+/// when `rational`, of `D`.
 ///
 /// Products are formed in the scaled basis `s^k (1 - s)^(d-k)`, whose coefficients are
 /// `C(d, k)` times the Bernstein ones: there a product is a plain convolution.
 #[inline(always)]
 fn squared_gap_on_piece<const POINTS: usize, const LEN: usize>(
-    curve: &Curve,
-    new_knots: &[f64],
-    a: f64,
-    b: f64,
+    p: usize,
+    mut old: [[f64; 4]; POINTS],
+    mut new: [[f64; 4]; POINTS],
     len: usize,
     rational: bool,
 ) -> Interval<LEN> {
-    let p = curve.degree();
-    let mut old = [[0.0; 4]; POINTS];
-    let mut new = [[0.0; 4]; POINTS];
-    curve.bezier_piece_with_knots(curve.knots(), a, b, &mut old);
-    curve.bezier_piece_with_knots(new_knots, a, b, &mut new);
     for i in 0..p + 1 {
         let scale = BINOMIAL[p][i];
         for c in 0..4 {
@@ -430,6 +505,51 @@ mod tests {
         knots[6] = 0.52;
         knots[7] = 0.78;
         check(&c, &knots);
+    }
+
+    #[test]
+    fn a_split_bezier_curve_keeps_its_points() {
+        // A cubic in four coordinates, split at 0.3: the parts, evaluated in Bernstein form,
+        // must trace the whole on [0, 0.3] and [0.3, 1].
+        let whole = [
+            [0.0, 1.0, -2.0, 1.0],
+            [3.0, 4.0, 0.5, 2.0],
+            [-1.0, 2.5, 7.0, 0.5],
+            [5.0, -3.0, 1.0, 1.5],
+        ];
+        let evaluate = |points: &[[f64; 4]; 4], s: f64| -> [f64; 4] {
+            std::array::from_fn(|c| {
+                (0..4)
+                    .map(|k| {
+                        points[k][c]
+                            * BINOMIAL[3][k]
+                            * s.powi(k as i32)
+                            * (1.0 - s).powi(3 - k as i32)
+                    })
+                    .sum()
+            })
+        };
+        let split = 0.3;
+        let (mut right, mut left) = (whole, [[0.0; 4]; 4]);
+        split_bezier(&mut right, split, &mut left);
+        for i in 0..=10 {
+            let s = i as f64 / 10.0;
+            let (on_left, on_right) = (evaluate(&left, s), evaluate(&right, s));
+            let (expected_left, expected_right) = (
+                evaluate(&whole, split * s),
+                evaluate(&whole, split + (1.0 - split) * s),
+            );
+            for c in 0..4 {
+                assert!(
+                    (on_left[c] - expected_left[c]).abs() < 1e-13,
+                    "left, s = {s}"
+                );
+                assert!(
+                    (on_right[c] - expected_right[c]).abs() < 1e-13,
+                    "right, s = {s}"
+                );
+            }
+        }
     }
 
     #[test]

@@ -48,16 +48,43 @@ impl Curve {
     /// Preconditions as for [`Curve::point_with_knots`], and `a < b` inside one knot span
     /// (the span that holds `a`, so `b <= ` the next knot). No allocation.
     pub fn bezier_piece_with_knots(&self, knots: &[f64], a: f64, b: f64, out: &mut [[f64; 4]]) {
+        let span = find_span(knots, self.degree(), a);
+        self.bezier_piece_in_span(knots, span, a, b, out);
+    }
+
+    /// The piece from `a` to the end of its knot span: writes the Bézier points of `[a, b]`
+    /// as [`Curve::bezier_piece_with_knots`] does, for `b` the first knot of `knots` above
+    /// `a` (the domain's end in the last span), and returns `b`.
+    ///
+    /// Preconditions as for [`Curve::bezier_piece_with_knots`], and `a` below the domain's
+    /// end.
+    pub fn bezier_span_rest_with_knots(&self, knots: &[f64], a: f64, out: &mut [[f64; 4]]) -> f64 {
+        let span = find_span(knots, self.degree(), a);
+        let b = knots[span + 1];
+        self.bezier_piece_in_span(knots, span, a, b, out);
+        b
+    }
+
+    /// [`Curve::bezier_piece_with_knots`] with `span` (the span of `knots` that holds `a`)
+    /// known.
+    fn bezier_piece_in_span(
+        &self,
+        knots: &[f64],
+        span: usize,
+        a: f64,
+        b: f64,
+        out: &mut [[f64; 4]],
+    ) {
         // Cubics (every shape request) get a copy compiled for degree 3 with 4 × 4 buffers.
         if self.degree() == 3 {
-            self.bezier_piece_in::<4>(knots, a, b, 3, out);
+            self.bezier_piece_in::<4>(knots, span, a, b, 3, out);
         } else {
-            self.bezier_piece_in::<CAP>(knots, a, b, self.degree(), out);
+            self.bezier_piece_in::<CAP>(knots, span, a, b, self.degree(), out);
         }
     }
 
     /// [`Curve::bezier_piece_with_knots`] for `p = degree` (the curve's) with `N`-sized
-    /// buffers (precondition `p < N`).
+    /// buffers (precondition `p < N`) and `span` the span of `knots` that holds `a`.
     ///
     /// The blossoms share work: `S_k` is the net after `k` de Boor levels with argument `a`
     /// (`S_0` the net itself); `B_{p-k}` continues `S_k` with `p - k` levels of argument `b`.
@@ -66,6 +93,7 @@ impl Curve {
     fn bezier_piece_in<const N: usize>(
         &self,
         knots: &[f64],
+        span: usize,
         a: f64,
         b: f64,
         degree: usize,
@@ -73,7 +101,6 @@ impl Curve {
     ) {
         debug_assert_eq!(degree, self.degree());
         let p = degree;
-        let span = find_span(knots, p, a);
         // Level k (1 <= k <= p) of de Boor's algorithm blends local points j - 1 and j
         // (k <= j <= p) with weight (x - lower) / (upper - lower), where
         // lower = u_{span-p+j} = below[j - 1] and upper = u_{span+1+j-k} = above[j - k].
