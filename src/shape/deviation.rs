@@ -266,14 +266,14 @@ impl<'a, const POINTS: usize> PieceCursor<'a, POINTS> {
 fn split_bezier(points: &mut [[f64; 4]], s: f64, left: &mut [[f64; 4]]) {
     let n = points.len() - 1;
     left[0] = points[0];
-    for level in 1..=n {
+    for (level, first) in left.iter_mut().enumerate().take(n + 1).skip(1) {
         for i in 0..=n - level {
             let (current, next) = (points[i], points[i + 1]);
             for c in 0..4 {
                 points[i][c] = current[c] + s * (next[c] - current[c]);
             }
         }
-        left[level] = points[0];
+        *first = points[0];
     }
 }
 
