@@ -52,7 +52,9 @@ fn serve(config: &Config) -> ExitCode {
         eprintln!("knotshape: {error}");
         return ExitCode::FAILURE;
     }
-    let runtime = match tokio::runtime::Builder::new_multi_thread()
+    // This thread accepts connections and waits for signals; the server starts its own worker
+    // threads, one event loop each (src/http/server.rs).
+    let runtime = match tokio::runtime::Builder::new_current_thread()
         .enable_all()
         .build()
     {
@@ -64,7 +66,11 @@ fn serve(config: &Config) -> ExitCode {
     };
     let served = runtime.block_on(async {
         let server = Server::bind(config).await?;
-        tracing::info!(address = %server.local_addr()?, "knotshape listening");
+        tracing::info!(
+            address = %server.local_addr()?,
+            worker_threads = server.worker_threads(),
+            "knotshape listening"
+        );
         server.serve_until(shutdown_signal()).await
     });
     match served {
