@@ -75,12 +75,63 @@ impl Curve {
         b: f64,
         out: &mut [[f64; 4]],
     ) {
-        // Cubics (every shape request) get a copy compiled for degree 3 with 4 × 4 buffers.
+        // Cubics (every shape request) get the blossoms written out.
         if self.degree() == 3 {
-            self.bezier_piece_in::<4>(knots, span, a, b, 3, out);
+            self.cubic_bezier_piece(knots, span, a, b, out);
         } else {
             self.bezier_piece_in::<CAP>(knots, span, a, b, self.degree(), out);
         }
+    }
+
+    /// [`Curve::bezier_piece_with_knots`] for a cubic, written out (the loops of
+    /// [`Curve::bezier_piece_in`] do not unroll). For knots `u` and the net `P_0 ..= P_3` of
+    /// `span = s` (`P_i` the control point `s - 3 + i`), de Boor's levels with arguments
+    /// `x, y, z` are
+    ///
+    /// * `Q_i(x) = P_{i-1} + (x - u_{s-3+i}) / (u_{s+i} - u_{s-3+i}) (P_i - P_{i-1})`, `i = 1, 2, 3`;
+    /// * `R_i(x, y) = Q_{i-1} + (y - u_{s-3+i}) / (u_{s-1+i} - u_{s-3+i}) (Q_i - Q_{i-1})`, `i = 2, 3`;
+    /// * `f(x, y, z) = R_2 + (z - u_s) / (u_{s+1} - u_s) (R_3 - R_2)`,
+    ///
+    /// and `B_0 = f(a, a, a)`, `B_1 = f(a, a, b)`, `B_2 = f(a, b, b)`, `B_3 = f(b, b, b)`:
+    /// 16 blends, sharing `Q(a)`, `Q(b)` and `R(a, a)`.
+    #[inline(always)]
+    fn cubic_bezier_piece(&self, knots: &[f64], span: usize, a: f64, b: f64, out: &mut [[f64; 4]]) {
+        let u = &knots[span - 2..=span + 3]; // u[k] = u_{s-2+k}
+        let net = &self.homogeneous()[span - 3..=span];
+        let blend = |from: [f64; 4], to: [f64; 4], weight: f64| -> [f64; 4] {
+            std::array::from_fn(|c| multiply_add(weight, to[c] - from[c], from[c]))
+        };
+        // Level 1: Q_i blends P_{i-1}, P_i over [u_{s-3+i}, u_{s+i}].
+        let first = [
+            1.0 / (u[3] - u[0]),
+            1.0 / (u[4] - u[1]),
+            1.0 / (u[5] - u[2]),
+        ];
+        let level_1 = |x: f64| {
+            [
+                blend(net[0], net[1], (x - u[0]) * first[0]),
+                blend(net[1], net[2], (x - u[1]) * first[1]),
+                blend(net[2], net[3], (x - u[2]) * first[2]),
+            ]
+        };
+        // Level 2: R_2 blends Q_1, Q_2 over [u_{s-1}, u_{s+1}]; R_3 blends Q_2, Q_3 over
+        // [u_s, u_{s+2}].
+        let second = [1.0 / (u[3] - u[1]), 1.0 / (u[4] - u[2])];
+        let level_2 = |q: &[[f64; 4]; 3], y: f64| {
+            [
+                blend(q[0], q[1], (y - u[1]) * second[0]),
+                blend(q[1], q[2], (y - u[2]) * second[1]),
+            ]
+        };
+        // Level 3 over the span itself, [u_s, u_{s+1}].
+        let third = 1.0 / (u[3] - u[2]);
+        let level_3 = |r: &[[f64; 4]; 2], z: f64| blend(r[0], r[1], (z - u[2]) * third);
+        let (q_a, q_b) = (level_1(a), level_1(b));
+        let r_aa = level_2(&q_a, a);
+        out[0] = level_3(&r_aa, a);
+        out[1] = level_3(&r_aa, b);
+        out[2] = level_3(&level_2(&q_a, b), b);
+        out[3] = level_3(&level_2(&q_b, b), b);
     }
 
     /// [`Curve::bezier_piece_with_knots`] for `p = degree` (the curve's) with `N`-sized
