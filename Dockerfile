@@ -18,6 +18,7 @@ WORKDIR /src
 # and the target directory survive between builds, and only crates whose
 # inputs changed are recompiled. The binary is copied out of the cache mount
 # in the same step, because the mount is not part of the image.
+# The slim image has gcc, which the mimalloc allocator's C source needs.
 COPY . .
 RUN --mount=type=cache,target=/usr/local/cargo/registry,sharing=locked \
     --mount=type=cache,target=/usr/local/cargo/git,sharing=locked \
