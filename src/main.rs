@@ -56,9 +56,7 @@ fn serve(config: &Config) -> ExitCode {
         eprintln!("knotshape: {error}");
         return ExitCode::FAILURE;
     }
-    // This thread accepts connections and waits for signals; the server starts its own worker
-    // threads, one event loop each (src/http/server.rs).
-    let runtime = match tokio::runtime::Builder::new_current_thread()
+    let runtime = match tokio::runtime::Builder::new_multi_thread()
         .enable_all()
         .build()
     {
@@ -70,11 +68,7 @@ fn serve(config: &Config) -> ExitCode {
     };
     let served = runtime.block_on(async {
         let server = Server::bind(config).await?;
-        tracing::info!(
-            address = %server.local_addr()?,
-            worker_threads = server.worker_threads(),
-            "knotshape listening"
-        );
+        tracing::info!(address = %server.local_addr()?, "knotshape listening");
         server.serve_until(shutdown_signal()).await
     });
     match served {

@@ -3,7 +3,6 @@
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
 mod auth;
-mod connections;
 mod curves;
 mod errors;
 mod examples;
