@@ -10,6 +10,9 @@ use std::time::Duration;
 
 use clap::{Parser, ValueEnum};
 
+/// Most worker threads a configuration may ask for.
+pub const MAX_WORKER_THREADS: u16 = 1024;
+
 /// Service configuration. Each flag can also be set by the environment variable named in its
 /// help text; a flag wins over the variable.
 #[derive(Debug, Clone, PartialEq, Parser)]
@@ -95,6 +98,18 @@ pub struct Config {
     )]
     pub drain_delay_ms: u64,
 
+    /// Worker threads of the async runtime that serves requests; 0: one per CPU available to
+    /// the process (its cgroup's CPU limit included). Large computations run on a separate
+    /// blocking pool either way.
+    #[arg(
+        long,
+        env = "KNOTSHAPE_WORKER_THREADS",
+        default_value_t = 0,
+        value_parser = clap::value_parser!(u16).range(0..=MAX_WORKER_THREADS as i64),
+        global = true
+    )]
+    pub worker_threads: u16,
+
     /// Log format: `human` or `json`.
     #[arg(long, env = "KNOTSHAPE_LOG_FORMAT", value_enum, default_value_t = LogFormat::Human, global = true)]
     pub log_format: LogFormat,
@@ -119,6 +134,7 @@ impl Default for Config {
             concurrency_limit: 64,
             retry_after_secs: 1,
             drain_delay_ms: 0,
+            worker_threads: 0,
             log_format: LogFormat::Human,
             log_filter: "info".to_owned(),
         }
@@ -254,6 +270,15 @@ mod tests {
         assert_eq!(parsed.api_key.as_ref().unwrap().as_bytes(), b"s3cret");
         assert_eq!(parsed.cors_allow_origins.len(), 2);
         assert_eq!(parsed.limits().max_parameters, 5);
+    }
+
+    #[test]
+    fn worker_threads_are_bounded() {
+        let parse = |value: &str| Config::try_parse_from(["knotshape", "--worker-threads", value]);
+        assert_eq!(parse("3").unwrap().worker_threads, 3);
+        assert_eq!(parse("0").unwrap().worker_threads, 0);
+        assert!(parse("1025").is_err());
+        assert!(parse("-1").is_err());
     }
 
     #[test]
