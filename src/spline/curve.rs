@@ -108,7 +108,9 @@ pub enum CurveError {
     },
     #[error("{count} control points exceed the limit {max}")]
     TooManyControlPoints { count: usize, max: usize },
-    #[error("control point {index} has {len} coordinates; all must have {expected} (2 or 3)")]
+    #[error("control point 0 has {len} coordinates; control points have 2 (planar) or 3 (spatial)")]
+    UnsupportedDimension { len: usize },
+    #[error("control point {index} has {len} coordinates; all must have {expected}, as the first")]
     WrongDimension {
         index: usize,
         len: usize,
@@ -154,6 +156,10 @@ impl CurveError {
             CurveError::TooFewControlPoints { .. } | CurveError::TooManyControlPoints { .. } => {
                 CurveField::ControlPoints
             }
+            CurveError::UnsupportedDimension { .. } => CurveField::ControlPoint {
+                index: 0,
+                coordinate: None,
+            },
             CurveError::WrongDimension { index, .. } => CurveField::ControlPoint {
                 index,
                 coordinate: None,
@@ -236,13 +242,7 @@ impl Curve {
         let dimension = match expected {
             2 => Dimension::Two,
             3 => Dimension::Three,
-            _ => {
-                return Err(CurveError::WrongDimension {
-                    index: 0,
-                    len: expected,
-                    expected: 2,
-                });
-            }
+            _ => return Err(CurveError::UnsupportedDimension { len: expected }),
         };
         let mut points = Vec::with_capacity(count);
         for (index, raw) in control_points.iter().enumerate() {
@@ -574,17 +574,25 @@ mod tests {
                 coordinate: None
             }
         );
+        assert!(err.to_string().contains("all must have 2"), "{err}");
         for bad_len in [1, 4] {
             let mut first = points(5);
             first[0] = vec![0.0; bad_len];
-            let field = field_of(build(2, &first, &FULL, None));
+            let err = build(2, &first, &FULL, None).unwrap_err();
             assert_eq!(
-                field,
+                err.field(),
                 CurveField::ControlPoint {
                     index: 0,
                     coordinate: None
                 }
             );
+            // The message names the dimensions there are, not one the point could not know.
+            let message = err.to_string();
+            assert!(
+                message.contains(&format!("has {bad_len} coordinates")),
+                "{message}"
+            );
+            assert!(message.contains("2 (planar) or 3 (spatial)"), "{message}");
         }
         let spatial: Vec<Vec<f64>> = points(5)
             .into_iter()
