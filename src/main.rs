@@ -16,6 +16,9 @@ use knotshape::telemetry;
 #[global_allocator]
 static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
 
+/// At exit, the longest wait for computations that outlived their (timed-out) requests.
+const EXIT_GRACE: Duration = Duration::from_secs(1);
+
 /// Time the health check waits for connecting, writing and reading.
 const HEALTHCHECK_TIMEOUT: Duration = Duration::from_secs(3);
 
@@ -73,6 +76,9 @@ fn serve(config: &Config) -> ExitCode {
         tracing::info!(address = %server.local_addr()?, "knotshape listening");
         server.serve_until(shutdown_signal()).await
     });
+    // Every answer is sent by now; computations still on the blocking pool belong to requests
+    // that timed out. Exit without waiting long for them.
+    runtime.shutdown_timeout(EXIT_GRACE);
     match served {
         Ok(()) => ExitCode::SUCCESS,
         Err(error) => {
