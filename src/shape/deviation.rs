@@ -78,10 +78,10 @@ pub fn max_deviation(curve: &Curve, new_knots: &[f64], interval: (f64, f64)) -> 
     // Cubics (every shape request) get copies compiled for their exact sizes: 4 Bézier points,
     // 7 coefficients (13 when rational).
     let squared = match (p, curve.is_rational()) {
-        (3, false) => maximum_squared_gap::<4, 7>(curve, new_knots, lo, hi, false),
-        (3, true) => maximum_squared_gap::<4, 13>(curve, new_knots, lo, hi, true),
-        (_, rational) => maximum_squared_gap::<{ MAX_DEGREE + 1 }, { MAX_RATIO_DEGREE + 1 }>(
-            curve, new_knots, lo, hi, rational,
+        (3, false) => maximum_squared_gap::<4, 7>(curve, 3, new_knots, lo, hi, false),
+        (3, true) => maximum_squared_gap::<4, 13>(curve, 3, new_knots, lo, hi, true),
+        (p, rational) => maximum_squared_gap::<{ MAX_DEGREE + 1 }, { MAX_RATIO_DEGREE + 1 }>(
+            curve, p, new_knots, lo, hi, rational,
         ),
     };
     squared.sqrt()
@@ -97,19 +97,18 @@ struct Interval<const LEN: usize> {
     depth: u32,
 }
 
-/// The largest squared gap on `[lo, hi]` (module docs). `POINTS > p` and `LEN >=` the number
-/// of coefficients (`2p + 1`, or `4p + 1` when `rational`).
+/// The largest squared gap on `[lo, hi]` (module docs). `p` is the curve's degree (a literal
+/// for cubics, so that the loops over the coefficients get fixed trip counts), `POINTS > p`
+/// and `LEN >=` the number of coefficients (`2p + 1`, or `4p + 1` when `rational`).
 #[inline(always)]
 fn maximum_squared_gap<const POINTS: usize, const LEN: usize>(
     curve: &Curve,
+    p: usize,
     new_knots: &[f64],
     lo: f64,
     hi: f64,
     rational: bool,
 ) -> f64 {
-    // For cubics a constant (`POINTS` is 4 only for them), so that the loops over the
-    // coefficients have fixed trip counts.
-    let p = if POINTS == 4 { 3 } else { curve.degree() };
     debug_assert_eq!(p, curve.degree());
     let len = if rational { 4 * p + 1 } else { 2 * p + 1 };
     debug_assert!(p < POINTS && len <= LEN);

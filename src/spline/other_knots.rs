@@ -36,28 +36,19 @@ impl Curve {
 }
 
 impl Curve {
-    /// The homogeneous Bézier control points `B_0 ..= B_p` of the piece `[a, b]` of the curve
-    /// with this control net over the full knot vector `knots`, written to `out[0..=p]`:
-    /// `A(u) = Σ_i B_i C(p, i) s^i (1 - s)^(p-i)` with `s = (u - a) / (b - a)`, for the
-    /// homogeneous curve `A = (w x, w y, w z, w)`.
+    /// The piece from `a` to the end of its knot span: writes to `out[0..=p]` the homogeneous
+    /// Bézier control points `B_0 ..= B_p` of the piece `[a, b]` of the curve with this
+    /// control net over the full knot vector `knots`, for `b` the first knot above `a` (the
+    /// domain's end in the last span), and returns `b`. With `s = (u - a) / (b - a)`,
+    /// `A(u) = Σ_i B_i C(p, i) s^i (1 - s)^(p-i)` for the homogeneous curve
+    /// `A = (w x, w y, w z, w)`.
     ///
     /// `B_i` is the blossom `A[a, …, a, b, …, b]` (`p - i` times `a`, `i` times `b`): de Boor's
     /// algorithm run with those arguments (The NURBS Book, §5; Ramshaw's blossoming). Every
     /// de Boor weight lies in `[0, 1]`, so the points are convex combinations of the net.
     ///
-    /// Preconditions as for [`Curve::point_with_knots`], and `a < b` inside one knot span
-    /// (the span that holds `a`, so `b <= ` the next knot). No allocation.
-    pub fn bezier_piece_with_knots(&self, knots: &[f64], a: f64, b: f64, out: &mut [[f64; 4]]) {
-        let span = find_span(knots, self.degree(), a);
-        self.bezier_piece_in_span(knots, span, a, b, out);
-    }
-
-    /// The piece from `a` to the end of its knot span: writes the Bézier points of `[a, b]`
-    /// as [`Curve::bezier_piece_with_knots`] does, for `b` the first knot of `knots` above
-    /// `a` (the domain's end in the last span), and returns `b`.
-    ///
-    /// Preconditions as for [`Curve::bezier_piece_with_knots`], and `a` below the domain's
-    /// end.
+    /// Preconditions as for [`Curve::point_with_knots`], and `a` below the domain's end. No
+    /// allocation.
     pub fn bezier_span_rest_with_knots(&self, knots: &[f64], a: f64, out: &mut [[f64; 4]]) -> f64 {
         let span = find_span(knots, self.degree(), a);
         let b = knots[span + 1];
@@ -65,8 +56,8 @@ impl Curve {
         b
     }
 
-    /// [`Curve::bezier_piece_with_knots`] with `span` (the span of `knots` that holds `a`)
-    /// known.
+    /// The Bézier points of `[a, b]` inside `span` (the span of `knots` that holds `a`, so
+    /// `b <=` its end), as [`Curve::bezier_span_rest_with_knots`] describes them.
     fn bezier_piece_in_span(
         &self,
         knots: &[f64],
@@ -79,12 +70,12 @@ impl Curve {
         if self.degree() == 3 {
             self.cubic_bezier_piece(knots, span, a, b, out);
         } else {
-            self.bezier_piece_in::<CAP>(knots, span, a, b, self.degree(), out);
+            self.bezier_piece_of_any_degree(knots, span, a, b, out);
         }
     }
 
-    /// [`Curve::bezier_piece_with_knots`] for a cubic, written out (the loops of
-    /// [`Curve::bezier_piece_in`] do not unroll). For knots `u` and the net `P_0 ..= P_3` of
+    /// [`Curve::bezier_piece_in_span`] for a cubic, written out (the loops of
+    /// [`Curve::bezier_piece_of_any_degree`] do not unroll). For knots `u` and the net `P_0 ..= P_3` of
     /// `span = s` (`P_i` the control point `s - 3 + i`), de Boor's levels with arguments
     /// `x, y, z` are
     ///
@@ -134,24 +125,21 @@ impl Curve {
         out[3] = level_3(&level_2(&q_b, b), b);
     }
 
-    /// [`Curve::bezier_piece_with_knots`] for `p = degree` (the curve's) with `N`-sized
-    /// buffers (precondition `p < N`) and `span` the span of `knots` that holds `a`.
+    /// [`Curve::bezier_piece_in_span`] for any degree.
     ///
     /// The blossoms share work: `S_k` is the net after `k` de Boor levels with argument `a`
     /// (`S_0` the net itself); `B_{p-k}` continues `S_k` with `p - k` levels of argument `b`.
-    /// For a cubic that is 16 blends instead of 24.
-    #[inline(always)]
-    fn bezier_piece_in<const N: usize>(
+    /// For a cubic that would be 16 blends instead of 24.
+    fn bezier_piece_of_any_degree(
         &self,
         knots: &[f64],
         span: usize,
         a: f64,
         b: f64,
-        degree: usize,
         out: &mut [[f64; 4]],
     ) {
-        debug_assert_eq!(degree, self.degree());
-        let p = degree;
+        const N: usize = CAP;
+        let p = self.degree();
         // Level k (1 <= k <= p) of de Boor's algorithm blends local points j - 1 and j
         // (k <= j <= p) with weight (x - lower) / (upper - lower), where
         // lower = u_{span-p+j} = below[j - 1] and upper = u_{span+1+j-k} = above[j - k].
@@ -312,10 +300,14 @@ mod tests {
             if hi <= lo {
                 continue;
             }
-            // The whole span and a piece strictly inside it.
-            for (a, b) in [(lo, hi), (lo + 0.3 * (hi - lo), lo + 0.8 * (hi - lo))] {
-                let mut bezier = [[0.0; 4]; CAP];
-                curve.bezier_piece_with_knots(knots, a, b, &mut bezier);
+            // The whole span (what the deviation measure extracts) and a piece strictly
+            // inside it (what the extraction serves any `[a, b]` with).
+            let mut whole = [[0.0; 4]; CAP];
+            assert_eq!(curve.bezier_span_rest_with_knots(knots, lo, &mut whole), hi);
+            let (a, b) = (lo + 0.3 * (hi - lo), lo + 0.8 * (hi - lo));
+            let mut inside = [[0.0; 4]; CAP];
+            curve.bezier_piece_in_span(knots, span, a, b, &mut inside);
+            for (a, b, bezier) in [(lo, hi, whole), (a, b, inside)] {
                 for i in 0..=8 {
                     let s = i as f64 / 8.0;
                     let expected = curve.point_with_knots(knots, a + s * (b - a));
