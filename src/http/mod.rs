@@ -7,7 +7,6 @@
 pub mod curve;
 pub mod error;
 pub mod extract;
-pub mod json_out;
 pub mod metrics;
 pub mod middleware;
 pub mod pointer;

@@ -11,8 +11,7 @@ use super::compute;
 use crate::config::Limits;
 use crate::http::curve::{CurveBody, WirePoint, point_to_wire};
 use crate::http::error::{ApiError, FieldError, Problem};
-use crate::http::extract::{ApiJson, RESPONSE_CAPACITY};
-use crate::http::json_out::JsonOut;
+use crate::http::extract::ApiJson;
 use crate::http::middleware::AdmissionPermit;
 use crate::http::pointer::JsonPointer;
 use crate::http::state::AppState;
@@ -335,79 +334,6 @@ pub struct SolveResponse {
     pub solutions: Vec<SolutionBody>,
 }
 
-impl SolveResponse {
-    /// The answer as JSON text, byte for byte what its `Serialize` derive gives (a test
-    /// checks), without escaping the constant keys: this is the service's hottest answer.
-    pub fn to_json(&self) -> JsonOut {
-        let mut out = JsonOut::with_capacity(RESPONSE_CAPACITY);
-        out.raw("{\"reachable\":");
-        out.bool(self.reachable);
-        out.raw(",\"candidates\":");
-        out.array(&self.candidates, |out, entry| {
-            let candidate = &entry.candidate;
-            out.raw("{\"side\":\"");
-            out.raw(candidate.side.wire_name());
-            out.raw("\",\"applicable\":");
-            out.bool(candidate.applicable);
-            if let Some(reason) = &candidate.reason {
-                out.raw(",\"reason\":");
-                out.string(reason);
-            }
-            out.raw(",\"span\":");
-            out.usize(candidate.span);
-            out.raw(",\"moved_knot\":");
-            out.usize(candidate.moved_knot);
-            if let Some(triangle) = &candidate.triangle {
-                out.raw(",\"triangle\":");
-                out.array(triangle, |out, point| out.f64s(point.as_slice()));
-            }
-            if let Some(frame) = &candidate.frame {
-                out.raw(",\"frame\":{\"x\":");
-                out.f64(frame.x);
-                out.raw(",\"y\":");
-                out.f64(frame.y);
-                out.raw("}");
-            }
-            out.raw(",\"regions\":");
-            out.array(&entry.regions, |out, membership| {
-                out.raw("{\"region\":\"");
-                out.raw(membership.region.wire_name());
-                out.raw("\",\"knots\":");
-                out.usizes(&membership.knots);
-                out.raw(",\"contains\":");
-                out.bool(membership.contains);
-                out.raw("}");
-            });
-            out.raw("}");
-        });
-        out.raw(",\"solutions\":");
-        out.array(&self.solutions, |out, solution| {
-            out.raw("{\"region\":\"");
-            out.raw(solution.region.wire_name());
-            out.raw("\",\"side\":\"");
-            out.raw(solution.side.wire_name());
-            out.raw("\",\"span\":");
-            out.usize(solution.span);
-            out.raw(",\"moved_knot\":");
-            out.usize(solution.moved_knot);
-            out.raw(",\"changed_knots\":");
-            out.usizes(&solution.changed_knots);
-            out.raw(",\"knots\":");
-            out.f64s(&solution.knots);
-            out.raw(",\"point\":");
-            out.f64s(solution.point.as_slice());
-            out.raw(",\"residual\":");
-            out.f64(solution.residual);
-            out.raw(",\"affected_domain\":");
-            out.f64s(&solution.affected_domain);
-            out.raw(",\"max_deviation\":");
-            out.f64(solution.max_deviation);
-            out.raw("}");
-        });
-        out.raw("}");
-        out
-    }
-}
 
 /// One region's boundary.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
@@ -516,7 +442,7 @@ pub async fn solve(
     State(state): State<AppState>,
     admission: Option<Extension<AdmissionPermit>>,
     ApiJson(request): ApiJson<ShapeRequest>,
-) -> Result<JsonOut, ApiError> {
+) -> Result<ApiJson<SolveResponse>, ApiError> {
     let curve_limits = state.curve_limits;
     // Validation is linear in the control points; the method itself is local and bounded.
     let work = request.curve.control_points.len();
@@ -558,9 +484,10 @@ pub async fn solve(
             candidates: membership_candidates(curve, &outcome),
             solutions,
         };
-        Ok(response.to_json())
+        Ok(response)
     })
     .await
+    .map(ApiJson)
 }
 
 /// The regions' boundary polygons.
