@@ -17,6 +17,7 @@
 //! Casteljau), its midpoint value raising `best`, until none may. Near a maximum the bound
 //! tightens with the square of the interval's width: the first worked example takes 15 halvings.
 
+use crate::spline::bernstein::{BINOMIAL, MAX_RATIO_DEGREE, convolve, halve, unscale};
 use crate::spline::{Curve, MAX_DEGREE};
 
 /// Relative precision of the squared deviation: the answer `d` is a distance the curves
@@ -34,27 +35,6 @@ const MAX_HALVINGS: usize = 4096;
 
 /// Gaps below this fraction of the control net's size count as zero (rounding noise).
 const ZERO_GAP: f64 = 1e-13;
-
-/// Largest degree of the polynomials `N` and `D`: `4p` for rational curves.
-const MAX_RATIO_DEGREE: usize = 4 * MAX_DEGREE;
-
-/// `BINOMIAL[n][k] = C(n, k)` for `n <= MAX_RATIO_DEGREE`, by Pascal's triangle.
-static BINOMIAL: [[f64; MAX_RATIO_DEGREE + 1]; MAX_RATIO_DEGREE + 1] = pascal_triangle();
-
-const fn pascal_triangle() -> [[f64; MAX_RATIO_DEGREE + 1]; MAX_RATIO_DEGREE + 1] {
-    let mut table = [[0.0; MAX_RATIO_DEGREE + 1]; MAX_RATIO_DEGREE + 1];
-    let mut n = 0;
-    while n <= MAX_RATIO_DEGREE {
-        table[n][0] = 1.0;
-        let mut k = 1;
-        while k <= n {
-            table[n][k] = table[n - 1][k - 1] + table[n - 1][k];
-            k += 1;
-        }
-        n += 1;
-    }
-    table
-}
 
 /// Largest distance `|s_old(u) - s_new(u)|` for `u` in `interval` (outside it the two curves
 /// agree) and in both curves' domains, where `s_old` is `curve` and `s_new` has the same
@@ -330,43 +310,6 @@ fn squared_gap_on_piece<const POINTS: usize, const LEN: usize>(
     }
     unscale(&mut interval.numerator[..len]);
     interval
-}
-
-/// `out += sign · a * b` (convolution: `out_k += sign Σ_{i+j=k} a_i b_j`), the product of two
-/// polynomials in the scaled Bernstein basis; `out` has `a.len() + b.len() - 1` entries.
-#[inline(always)]
-fn convolve(a: &[f64], b: &[f64], out: &mut [f64], sign: f64) {
-    debug_assert_eq!(out.len(), a.len() + b.len() - 1);
-    for (i, &a_i) in a.iter().enumerate() {
-        let a_i = sign * a_i;
-        for (product, &b_j) in out[i..].iter_mut().zip(b) {
-            *product += a_i * b_j;
-        }
-    }
-}
-
-/// Scaled-basis coefficients (`C(d, k)` times the Bernstein ones) to Bernstein coefficients.
-#[inline(always)]
-fn unscale(coefficients: &mut [f64]) {
-    let degree = coefficients.len() - 1;
-    for (k, value) in coefficients.iter_mut().enumerate() {
-        *value /= BINOMIAL[degree][k];
-    }
-}
-
-/// Splits a Bernstein polynomial on `[0, 1]` at `1/2` (de Casteljau): `left` and `right` get
-/// the coefficients of its halves, each again on `[0, 1]`.
-#[inline(always)]
-fn halve(coefficients: &[f64], left: &mut [f64], right: &mut [f64]) {
-    let n = coefficients.len() - 1;
-    right.copy_from_slice(coefficients);
-    left[0] = coefficients[0];
-    for (level, first) in left.iter_mut().enumerate().skip(1) {
-        for i in 0..n - level + 1 {
-            right[i] = 0.5 * (right[i] + right[i + 1]);
-        }
-        *first = right[0];
-    }
 }
 
 #[cfg(test)]

@@ -5,6 +5,8 @@
 //! `u_0 ..= u_{n+p+1}`, domain `[u_p, u_{n+1}]`.
 
 mod basis;
+pub(crate) mod bernstein;
+mod closest;
 mod curve;
 mod envelope;
 mod eval;
@@ -13,6 +15,7 @@ pub use other_knots::PowerPiece;
 pub mod vector;
 
 pub use basis::MAX_DEGREE;
+pub use closest::{CLOSEST_POINT_TOLERANCE, ClosestPoint, ClosestPointError, ClosestPointSearch};
 pub use curve::{Curve, CurveError, CurveField, CurveLimits, Dimension, KnotConvention};
 pub use envelope::{EnvelopeError, KnotRun};
 pub use eval::{BatchEvaluator, EvalError};

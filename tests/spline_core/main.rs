@@ -2,6 +2,7 @@
 //! envelope of `knotshape::spline`, checked against an independent textbook implementation.
 #![allow(clippy::unwrap_used)]
 
+mod closest;
 mod envelope;
 mod evaluation;
 mod generators;

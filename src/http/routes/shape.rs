@@ -334,7 +334,6 @@ pub struct SolveResponse {
     pub solutions: Vec<SolutionBody>,
 }
 
-
 /// One region's boundary.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
 #[schema(example = json!({"region": "omega2", "knots": [4, 6],
