@@ -13,6 +13,7 @@ pub mod pointer;
 pub mod routes;
 pub mod server;
 pub mod state;
+pub mod wire;
 
 use std::sync::Arc;
 
@@ -33,7 +34,7 @@ use utoipa_axum::routes;
 
 use crate::config::Config;
 use error::{FieldError, PROBLEM_JSON, Problem};
-use routes::{curves, ops, shape};
+use routes::{closest, curves, ops, shape};
 pub use server::{Server, shutdown_signal};
 pub use state::{AppState, Readiness};
 
@@ -91,6 +92,7 @@ fn v1_routes() -> OpenApiRouter<AppState> {
     OpenApiRouter::new()
         .routes(routes!(curves::evaluate))
         .routes(routes!(curves::envelope))
+        .routes(routes!(closest::closest_point))
         .routes(routes!(shape::membership))
         .routes(routes!(shape::regions))
         .routes(routes!(shape::solve))
@@ -254,6 +256,6 @@ mod tests {
     fn the_document_names_every_route() {
         let document = openapi();
         let paths: Vec<&String> = document.paths.paths.keys().collect();
-        assert_eq!(paths.len(), 9, "{paths:?}");
+        assert_eq!(paths.len(), 10, "{paths:?}");
     }
 }

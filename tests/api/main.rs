@@ -3,6 +3,7 @@
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
 mod auth;
+mod closest;
 mod curves;
 mod errors;
 mod examples;
