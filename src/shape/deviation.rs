@@ -47,6 +47,25 @@ const ZERO_GAP: f64 = 1e-13;
 /// Preconditions: `new_knots` is a full, non-decreasing knot vector of `curve`'s length with
 /// a non-empty domain.
 pub fn max_deviation(curve: &Curve, new_knots: &[f64], interval: (f64, f64)) -> f64 {
+    max_deviation_between(curve, curve, new_knots, interval)
+}
+
+/// Largest distance `|s_old(u) - s_new(u)|` for `u` in `interval` between `curve` and
+/// `moved`, a curve of the same degree, control point count and rationality over the same
+/// knots (a control-point edit), certified as [`max_deviation`] is.
+pub fn max_deviation_of_moved_poles(curve: &Curve, moved: &Curve, interval: (f64, f64)) -> f64 {
+    debug_assert_eq!(curve.degree(), moved.degree());
+    debug_assert_eq!(curve.is_rational(), moved.is_rational());
+    max_deviation_between(curve, moved, moved.knots(), interval)
+}
+
+/// The deviation between `curve` and the control net of `moved` over `new_knots`.
+fn max_deviation_between(
+    curve: &Curve,
+    moved: &Curve,
+    new_knots: &[f64],
+    interval: (f64, f64),
+) -> f64 {
     let old_knots = curve.knots();
     let (p, end) = (curve.degree(), curve.control_points().len());
     // Both curves are defined on the intersection of their domains.
@@ -58,10 +77,10 @@ pub fn max_deviation(curve: &Curve, new_knots: &[f64], interval: (f64, f64)) -> 
     // Cubics (every shape request) get copies compiled for their exact sizes: 4 Bézier points,
     // 7 coefficients (13 when rational).
     let squared = match (p, curve.is_rational()) {
-        (3, false) => maximum_squared_gap::<4, 7>(curve, 3, new_knots, lo, hi, false),
-        (3, true) => maximum_squared_gap::<4, 13>(curve, 3, new_knots, lo, hi, true),
+        (3, false) => maximum_squared_gap::<4, 7>(curve, moved, 3, new_knots, lo, hi, false),
+        (3, true) => maximum_squared_gap::<4, 13>(curve, moved, 3, new_knots, lo, hi, true),
         (p, rational) => maximum_squared_gap::<{ MAX_DEGREE + 1 }, { MAX_RATIO_DEGREE + 1 }>(
-            curve, p, new_knots, lo, hi, rational,
+            curve, moved, p, new_knots, lo, hi, rational,
         ),
     };
     squared.sqrt()
@@ -83,6 +102,7 @@ struct Interval<const LEN: usize> {
 #[inline(always)]
 fn maximum_squared_gap<const POINTS: usize, const LEN: usize>(
     curve: &Curve,
+    moved: &Curve,
     p: usize,
     new_knots: &[f64],
     lo: f64,
@@ -97,7 +117,7 @@ fn maximum_squared_gap<const POINTS: usize, const LEN: usize>(
     // each piece between consecutive values becomes one interval of the search.
     let mut stack: Vec<Interval<LEN>> = Vec::with_capacity(2 * (p + 2) + MAX_DEPTH as usize);
     let mut old_pieces = PieceCursor::<POINTS>::new(curve, old_knots);
-    let mut new_pieces = PieceCursor::<POINTS>::new(curve, new_knots);
+    let mut new_pieces = PieceCursor::<POINTS>::new(moved, new_knots);
     let (mut i, mut k) = (0, 0);
     let mut start = lo;
     loop {

@@ -7,7 +7,9 @@
 //! no HTTP, wire-format or logging types.
 
 mod candidate;
+mod control_points;
 mod deviation;
+mod nearest;
 mod pairs;
 mod regions;
 mod solve;
@@ -16,7 +18,9 @@ pub use candidate::{
     Candidate, DEGENERACY_TOLERANCE, Frame, NotApplicable, PLANE_TOLERANCE, Side, SideChoice,
     candidate, frame_to_point,
 };
-pub use deviation::{DEVIATION_RELATIVE_TOLERANCE, max_deviation};
+pub use control_points::{CONTROL_POINT_RESIDUAL, ControlPointSolution, control_point_move};
+pub use deviation::{DEVIATION_RELATIVE_TOLERANCE, max_deviation, max_deviation_of_moved_poles};
+pub use nearest::{NEAREST_SAMPLING_TOLERANCE, NearestOutcome, nearest_reachable};
 pub use pairs::{
     CLAMP_TOLERANCE, FRAME_ZERO_TOLERANCE, KNOT_TOLERANCE, KnotPair, LocalKnot, LocalKnots,
     solve_pair,
