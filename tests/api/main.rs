@@ -5,6 +5,7 @@
 mod auth;
 mod closest;
 mod curves;
+mod edit;
 mod errors;
 mod examples;
 mod helpers;

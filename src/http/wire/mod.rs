@@ -2,3 +2,4 @@
 //! from and to core types; handlers live in [`super::routes`].
 
 pub mod closest;
+pub mod methods;
