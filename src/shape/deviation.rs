@@ -385,7 +385,7 @@ mod tests {
         );
     }
 
-    /// The control net of the first worked example (`../shared/docs/examples.json`).
+    /// The control net of the first worked example (`tests/data/examples.json`, docs/method.md §10).
     const PLANAR_NET: [&[f64]; 8] = [
         &[0.0, 0.0],
         &[1.0, 3.0],

@@ -1,5 +1,5 @@
 //! The shape core: move a curve point `s(t)` to a target by moving knots (Juhász & Hoffmann;
-//! Tornai's knot pairs Ω1–Ω6), per MATH.md §3–5.
+//! Tornai's knot pairs Ω1–Ω6), per docs/method.md §3–§8.
 //!
 //! For a cubic curve and a picked parameter `t`, one knot next to `t` moves to `t` (the
 //! [`Side`]); two more knots around it (a [`KnotPair`]) are solved in closed form so that

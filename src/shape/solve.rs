@@ -1,5 +1,5 @@
 //! The knot-pair solver: new knot vectors that move the curve point `s(t)` to a target
-//! (MATH.md §3–5), and region membership through the very same code path.
+//! (docs/method.md §3–§8), and region membership through the very same code path.
 
 use super::candidate::{Candidate, Side, SideChoice, candidate, triangle_size};
 use super::deviation::max_deviation;
@@ -66,7 +66,7 @@ pub struct ShapeQuery<'a> {
     pub side: SideChoice,
     /// The knot pairs to try.
     pub pairs: &'a [KnotPair],
-    /// Drop solutions that change `u_{k-1}` or `u_{n+1}` (MATH.md "Keeping the curve's domain"),
+    /// Drop solutions that change `u_{k-1}` or `u_{n+1}` (docs/method.md §6),
     /// or that move a knot onto a clamped end (which moves the end point just the same).
     pub keep_domain: bool,
 }
@@ -203,7 +203,7 @@ pub struct SolveOptions {
     pub measure_deviation: bool,
 }
 
-/// Solves `s(t) → target` for every requested side and knot pair (MATH.md §3).
+/// Solves `s(t) → target` for every requested side and knot pair (docs/method.md §3).
 ///
 /// Per applicable candidate `j`: the new knots are `u_{j+1} := t` plus the pair's two
 /// unknowns from [`solve_pair`]. A solution is dropped when `keep_domain` is set and it

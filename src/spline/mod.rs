@@ -1,6 +1,6 @@
 //! The spline core: validated B-spline/NURBS curves, evaluation and the knot-moving envelope.
 //!
-//! Pure geometry: no HTTP, wire-format or logging types. Conventions follow MATH.md §1:
+//! Pure geometry: no HTTP, wire-format or logging types. Conventions follow docs/method.md §1:
 //! degree `p`, order `k = p + 1`, control points `d_0 ..= d_n`, full knot vector
 //! `u_0 ..= u_{n+p+1}`, domain `[u_p, u_{n+1}]`.
 

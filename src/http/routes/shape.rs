@@ -1,5 +1,5 @@
 //! `POST /v1/shape/membership`, `/v1/shape/regions` and `/v1/shape/solve`: the knot-pair
-//! method (MATH.md §3–5) over the wire. Knot indices and vectors are converted from the
+//! method (docs/method.md §3–§8) over the wire. Knot indices and vectors are converted from the
 //! core's full convention to the caller's.
 
 use axum::Extension;
@@ -225,7 +225,7 @@ pub struct RegionsRequest {
 }
 
 /// The target in the control triangle's frame:
-/// `p = d_{j-1} + x (d_{j-2} - d_{j-1}) + y (d_j - d_{j-1})` (rational: MATH.md §4).
+/// `p = d_{j-1} + x (d_{j-2} - d_{j-1}) + y (d_j - d_{j-1})` (rational: docs/method.md §7).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
 #[schema(example = json!({"x": 0.18, "y": 0.1067}))]
 pub struct FrameBody {
@@ -249,7 +249,7 @@ pub struct CandidateBody {
     /// triangle's plane).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub reason: Option<String>,
-    /// The span `j` of MATH.md §3 (full-vector numbering: the moved knot is `u_{j+1}`, the
+    /// The span `j` of docs/method.md §3.1 (full-vector numbering: the moved knot is `u_{j+1}`, the
     /// triangle is `d_{j-2}, d_{j-1}, d_j`).
     #[schema(example = 4)]
     pub span: usize,
