@@ -62,20 +62,97 @@ pub(crate) fn halve(coefficients: &[f64], left: &mut [f64], right: &mut [f64]) {
     }
 }
 
-/// The value at `s` of the Bernstein polynomial with `coefficients` (de Casteljau), and its
-/// derivative there. `scratch` holds at least `coefficients.len()` values.
-pub(crate) fn value_and_slope(coefficients: &[f64], s: f64, scratch: &mut [f64]) -> (f64, f64) {
+/// The value at `s ∈ [0, 1]` of the Bernstein polynomial with `coefficients`, and its
+/// derivative there, in `O(n)`: Horner's scheme in `r = s / (1 - s)` (for `s <= 1/2`, else in
+/// `(1 - s) / s` over the reversed coefficients), `f = (1 - s)^n Σ C(n, k) b_k r^k`, and the
+/// derivative `n Σ (b_{k+1} - b_k) B_k^{n-1}(s)` likewise. Both ratios stay `<= 1`, so the sums
+/// are as well conditioned as de Casteljau's.
+pub(crate) fn value_and_slope(coefficients: &[f64], s: f64) -> (f64, f64) {
     let n = coefficients.len() - 1;
-    let work = &mut scratch[..=n];
-    work.copy_from_slice(coefficients);
     if n == 0 {
-        return (work[0], 0.0);
+        return (coefficients[0], 0.0);
     }
-    for level in 1..n {
-        for i in 0..=n - level {
-            work[i] += s * (work[i + 1] - work[i]);
+    let mirrored = s > 0.5;
+    let (ratio, base) = if mirrored {
+        ((1.0 - s) / s, s)
+    } else {
+        (s / (1.0 - s), 1.0 - s)
+    };
+    let binomials = &BINOMIAL[n][..=n];
+    let lower = &BINOMIAL[n - 1][..n];
+    let at = |k: usize| {
+        if mirrored {
+            coefficients[n - k]
+        } else {
+            coefficients[k]
         }
+    };
+    // Σ_k C(n, k) b_k r^k and Σ_k C(n-1, k) (b_{k+1} - b_k) r^k, by Horner from the top.
+    let mut value = at(n);
+    let mut slope = at(n) - at(n - 1);
+    for k in (0..n).rev() {
+        value = value * ratio + binomials[k] * at(k);
     }
-    let slope = n as f64 * (work[1] - work[0]);
-    (work[0] + s * (work[1] - work[0]), slope)
+    for k in (0..n - 1).rev() {
+        slope = slope * ratio + lower[k] * (at(k + 1) - at(k));
+    }
+    let mut power = 1.0;
+    for _ in 1..n {
+        power *= base;
+    }
+    let slope = n as f64 * slope * power;
+    (value * power * base, if mirrored { -slope } else { slope })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// de Casteljau's evaluation, the reference for the Horner form.
+    fn de_casteljau(coefficients: &[f64], s: f64) -> f64 {
+        let mut work = coefficients.to_vec();
+        for level in 1..work.len() {
+            for i in 0..work.len() - level {
+                work[i] += s * (work[i + 1] - work[i]);
+            }
+        }
+        work[0]
+    }
+
+    #[test]
+    fn horner_values_and_slopes_match_de_casteljau_and_differences() {
+        let coefficients = [1.5, -2.0, 0.25, 3.0, -1.0, 0.5];
+        for i in 0..=40 {
+            let s = i as f64 / 40.0;
+            let (value, slope) = value_and_slope(&coefficients, s);
+            assert!(
+                (value - de_casteljau(&coefficients, s)).abs() < 1e-13,
+                "s = {s}"
+            );
+            // The derivative's own Bernstein coefficients n (b_{k+1} - b_k), by de Casteljau.
+            let differences: Vec<f64> = coefficients
+                .windows(2)
+                .map(|w| 5.0 * (w[1] - w[0]))
+                .collect();
+            let expected = de_casteljau(&differences, s);
+            assert!(
+                (slope - expected).abs() < 1e-12,
+                "s = {s}: {slope} vs {expected}"
+            );
+            // And a central difference inside the interval.
+            if (0.01..=0.99).contains(&s) {
+                let h = 1e-5;
+                let difference = (de_casteljau(&coefficients, s + h)
+                    - de_casteljau(&coefficients, s - h))
+                    / (2.0 * h);
+                assert!(
+                    (slope - difference).abs() < 1e-6,
+                    "s = {s}: {slope} vs {difference}"
+                );
+            }
+        }
+        assert_eq!(value_and_slope(&[2.0], 0.3), (2.0, 0.0));
+        let (value, slope) = value_and_slope(&[1.0, 3.0], 0.25);
+        assert!((value - 1.5).abs() < 1e-15 && (slope - 2.0).abs() < 1e-15);
+    }
 }

@@ -28,6 +28,7 @@ use super::basis::find_span;
 use super::bernstein::{BINOMIAL, MAX_RATIO_DEGREE, convolve, halve, unscale, value_and_slope};
 use super::curve::Curve;
 use super::vector::{Point, distance};
+use smallvec::SmallVec;
 
 /// Ties and precision: among parameters whose distances lie within
 /// `CLOSEST_POINT_TOLERANCE · (size + d)` of the least distance `d` (`size`: the diagonal of the
@@ -44,6 +45,10 @@ const MAX_DEPTH: u32 = 52;
 
 /// Halvings per query at most, which bounds the time whatever the input.
 pub const MAX_HALVINGS: usize = 4096;
+
+/// Newton's method stops when a step moves the local parameter by at most this (the part's
+/// width times `1e-14`: far below the tie tolerance, and above the rounding noise of the step).
+const ROOT_STEP_TOLERANCE: f64 = 1e-14;
 
 /// Iterations of the safeguarded Newton method at most (bisection alone needs about 60).
 const MAX_ROOT_ITERATIONS: usize = 100;
@@ -118,12 +123,20 @@ struct PieceBox {
 impl PieceBox {
     /// The squared distance from `q` to the box: a lower bound for the piece.
     fn squared_distance(&self, q: Point, coordinates: usize) -> f64 {
-        (0..coordinates)
-            .map(|c| {
-                let gap = (self.min[c] - q[c]).max(q[c] - self.max[c]).max(0.0);
-                gap * gap
-            })
-            .sum()
+        let mut sum = 0.0;
+        for c in 0..coordinates {
+            let below = self.min[c] - q[c];
+            let above = q[c] - self.max[c];
+            let gap = if below > 0.0 {
+                below
+            } else if above > 0.0 {
+                above
+            } else {
+                0.0
+            };
+            sum += gap * gap;
+        }
+        sum
     }
 }
 
@@ -233,8 +246,24 @@ impl<'c> ClosestPointSearch<'c> {
         if let Some(end_point) = self.end_point {
             search.offer(self.range.1, squared_distance(q, end_point));
         }
-        for (index, piece) in self.pieces.iter().enumerate() {
-            if search.prunes(piece.squared_distance(q, coordinates), piece.lo) {
+        // The piece whose box is nearest first: it most likely holds the answer, and the
+        // distance found there prunes most of the others.
+        let bounds: SmallVec<[f64; 128]> = self
+            .pieces
+            .iter()
+            .map(|piece| piece.squared_distance(q, coordinates))
+            .collect();
+        let mut nearest_box = 0;
+        for (index, &bound) in bounds.iter().enumerate() {
+            if bound < bounds[nearest_box] {
+                nearest_box = index;
+            }
+        }
+        let order = std::iter::once(nearest_box)
+            .chain((0..self.pieces.len()).filter(|&index| index != nearest_box));
+        for index in order {
+            let piece = &self.pieces[index];
+            if search.prunes(bounds[index], piece.lo) {
                 continue;
             }
             let bezier = &self.points[index * (p + 1)..(index + 1) * (p + 1)];
@@ -276,8 +305,7 @@ fn project(point: &[f64; 4]) -> Point {
 }
 
 fn squared_distance(a: Point, b: Point) -> f64 {
-    let d = distance(a, b);
-    d * d
+    (0..3).map(|c| (a[c] - b[c]) * (a[c] - b[c])).sum()
 }
 
 /// The diagonal of the points' bounding box.
@@ -310,10 +338,12 @@ struct Search {
     size: f64,
     /// The least squared distance offered so far.
     best: f64,
+    /// [`Search::slack`] at the current `best` (recomputed when `best` falls).
+    slack: f64,
     /// The smallest parameter among the kept candidates.
     best_parameter: f64,
     /// Parameters whose squared distance lay within the slack of the best when offered.
-    candidates: Vec<(f64, f64)>,
+    candidates: SmallVec<[(f64, f64); 8]>,
     halvings: usize,
 }
 
@@ -322,15 +352,16 @@ impl Search {
         Search {
             size,
             best: f64::INFINITY,
+            slack: f64::INFINITY,
             best_parameter: f64::INFINITY,
-            candidates: Vec::with_capacity(8),
+            candidates: SmallVec::new(),
             halvings: 0,
         }
     }
 
     /// How far above the best squared distance a value still counts: the tie tolerance on
-    /// the distance, plus the rounding allowance.
-    fn slack(&self) -> f64 {
+    /// the distance, plus the rounding allowance (kept in `slack`).
+    fn slack_at(&self) -> f64 {
         let best = self.best.sqrt();
         let tolerance = CLOSEST_POINT_TOLERANCE * (self.size + best);
         let scale = self.size + best;
@@ -342,16 +373,19 @@ impl Search {
         if value.is_nan() {
             return;
         }
+        // Rounding can make a squared distance near zero slightly negative.
+        let value = value.max(0.0);
         if value < self.best {
             self.best = value;
-            let limit = self.best + self.slack();
-            self.candidates.retain(|&(_, v)| v <= limit);
+            self.slack = self.slack_at();
+            let limit = self.best + self.slack;
+            self.candidates.retain(|&mut (_, v)| v <= limit);
             self.best_parameter = self
                 .candidates
                 .iter()
                 .fold(f64::INFINITY, |m, &(u, _)| m.min(u));
         }
-        if value <= self.best + self.slack() {
+        if value <= self.best + self.slack {
             self.candidates.push((u, value));
             self.best_parameter = self.best_parameter.min(u);
         }
@@ -361,7 +395,7 @@ impl Search {
     /// can be left out: it cannot come within the slack of the best, or it cannot beat the
     /// best and lies right of a tie already found (ties go to the smallest parameter).
     fn prunes(&self, bound: f64, from: f64) -> bool {
-        let slack = self.slack();
+        let slack = self.slack;
         bound > self.best + slack
             || (bound >= self.best - 0.5 * slack && from >= self.best_parameter)
     }
@@ -396,7 +430,8 @@ impl Search {
                 part.numerator[index]
             }
         };
-        let mut stack: Vec<Part<LEN>> = Vec::with_capacity(MAX_DEPTH as usize + 1);
+        // Depth first: the stack holds at most one part per level (and rarely more than a few).
+        let mut stack: SmallVec<[Part<LEN>; 8]> = SmallVec::new();
         stack.push(part);
         while let Some(part) = stack.pop() {
             let bound = (0..len)
@@ -414,10 +449,9 @@ impl Search {
             if first_sign < 0.0 && sign_changes(slope) == 1 {
                 // One interior minimum: where M crosses zero upwards.
                 let root = upward_root(slope);
-                let mut scratch = [0.0; LEN];
-                let (n, _) = value_and_slope(&part.numerator[..len], root, &mut scratch);
+                let (n, _) = value_and_slope(&part.numerator[..len], root);
                 let squared = if rational {
-                    n / value_and_slope(&part.denominator[..len], root, &mut scratch).0
+                    n / value_and_slope(&part.denominator[..len], root).0
                 } else {
                     n
                 };
@@ -461,8 +495,8 @@ impl Search {
     /// The answer: the candidates measured with the curve evaluator, the smallest parameter
     /// among those within the tolerance of the least distance.
     fn finish(&self, curve: &Curve, q: Point, fallback: f64) -> ClosestPoint {
-        let limit = self.best + self.slack();
-        let mut measured: Vec<ClosestPoint> = self
+        let limit = self.best + self.slack;
+        let mut measured: SmallVec<[ClosestPoint; 8]> = self
             .candidates
             .iter()
             .filter(|&&(_, v)| v <= limit)
@@ -589,11 +623,22 @@ fn sign_changes(values: &[f64]) -> usize {
 /// `>= 0` at 1 with a single sign change: Newton's method, falling back to bisection whenever
 /// a step leaves the bracket.
 fn upward_root(coefficients: &[f64]) -> f64 {
-    let mut scratch = [0.0; 4 * MAX_DEGREE + 1];
     let (mut below, mut above) = (0.0f64, 1.0f64);
+    // Start where the control polygon crosses zero: close to the root, since the polygon
+    // converges to the polynomial.
+    let degree = (coefficients.len() - 1).max(1) as f64;
     let mut s = 0.5;
+    for (k, pair) in coefficients.windows(2).enumerate() {
+        if pair[0] < 0.0 && pair[1] >= 0.0 {
+            s = (k as f64 + pair[0] / (pair[0] - pair[1])) / degree;
+            break;
+        }
+    }
+    if !(s > 0.0 && s < 1.0) {
+        s = 0.5;
+    }
     for _ in 0..MAX_ROOT_ITERATIONS {
-        let (value, slope) = value_and_slope(coefficients, s, &mut scratch);
+        let (value, slope) = value_and_slope(coefficients, s);
         if value == 0.0 {
             return s;
         }
@@ -602,17 +647,19 @@ fn upward_root(coefficients: &[f64]) -> f64 {
         } else {
             above = s;
         }
-        if above - below <= 2.0 * f64::EPSILON {
-            break;
-        }
         let newton = s - value / slope;
-        s = if slope > 0.0 && newton > below && newton < above {
-            newton
+        // Converged when the step no longer moves `s` by more than rounding.
+        if (newton - s).abs() <= ROOT_STEP_TOLERANCE {
+            return newton.clamp(below, above);
+        }
+        if slope > 0.0 && newton > below && newton < above {
+            s = newton;
         } else {
-            0.5 * (below + above)
-        };
-        if s == below || s == above {
-            break;
+            let middle = 0.5 * (below + above);
+            if middle <= below || middle >= above {
+                break;
+            }
+            s = middle;
         }
     }
     s

@@ -1,0 +1,134 @@
+//! Closest point per query (`ClosestPointSearch`): 2,000 random queries on a 2D cubic with 60
+//! control points (the size of the peer comparison in the README), and how the cost grows from
+//! 10 to 10,000 control points. Before timing, every answer on the 60-pole curve is checked
+//! against brute force (200,001 samples plus golden-section refinement), and the number of
+//! answers worse than brute force is printed: it must be 0.
+#![allow(clippy::unwrap_used)]
+
+use std::hint::black_box;
+use std::time::Duration;
+
+use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
+use knotshape::spline::{ClosestPointSearch, Curve, CurveLimits, Point};
+
+/// Queries per timed iteration.
+const QUERIES: usize = 2_000;
+/// Seed of the curves and queries.
+const SEED: u64 = 0x5EED_0FC0_FFEE;
+
+/// SplitMix64: a tiny, well-known seeded generator.
+struct SplitMix64(u64);
+
+impl SplitMix64 {
+    fn next_f64(&mut self) -> f64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+/// A clamped 2D cubic on `[0, 1]` with `count` control points random in `[-10, 10]²` and
+/// sorted random interior knots.
+fn curve(count: usize, rng: &mut SplitMix64) -> Curve {
+    let points: Vec<Vec<f64>> = (0..count)
+        .map(|_| vec![20.0 * rng.next_f64() - 10.0, 20.0 * rng.next_f64() - 10.0])
+        .collect();
+    let mut interior: Vec<f64> = (0..count - 4).map(|_| rng.next_f64()).collect();
+    interior.sort_by(f64::total_cmp);
+    let mut knots = vec![0.0; 4];
+    knots.extend(interior);
+    knots.extend([1.0; 4]);
+    Curve::new(3, &points, &knots, None, &CurveLimits::default()).unwrap()
+}
+
+/// Query points uniform in `[-12, 12]²`.
+fn queries(rng: &mut SplitMix64) -> Vec<Point> {
+    (0..QUERIES)
+        .map(|_| {
+            [
+                24.0 * rng.next_f64() - 12.0,
+                24.0 * rng.next_f64() - 12.0,
+                0.0,
+            ]
+        })
+        .collect()
+}
+
+/// The least distance by dense sampling and golden-section refinement of the best samples.
+fn brute_force(curve: &Curve, q: Point) -> f64 {
+    const SAMPLES: usize = 200_000;
+    let gap = |u: f64| {
+        let p = curve.point(u.clamp(0.0, 1.0)).unwrap();
+        ((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2)).sqrt()
+    };
+    let values: Vec<f64> = (0..=SAMPLES)
+        .map(|i| gap(i as f64 / SAMPLES as f64))
+        .collect();
+    let mut best = values.iter().copied().fold(f64::INFINITY, f64::min);
+    for i in 1..SAMPLES {
+        if values[i] <= values[i - 1] && values[i] <= values[i + 1] && values[i] < best + 1e-3 {
+            let (mut a, mut b) = (
+                (i - 1) as f64 / SAMPLES as f64,
+                (i + 1) as f64 / SAMPLES as f64,
+            );
+            for _ in 0..60 {
+                let x = b - 0.618_033_988_749_895 * (b - a);
+                let y = a + 0.618_033_988_749_895 * (b - a);
+                if gap(x) < gap(y) { b = y } else { a = x }
+            }
+            best = best.min(gap(0.5 * (a + b)));
+        }
+    }
+    best
+}
+
+fn bench_closest(c: &mut Criterion) {
+    let mut rng = SplitMix64(SEED);
+    let sixty = curve(60, &mut rng);
+    let points = queries(&mut rng);
+    let search = ClosestPointSearch::new(&sixty, None).unwrap();
+    // `KNOTSHAPE_CLOSEST_ONLY=1`: answer the queries once and stop, for an instruction count
+    // (`valgrind --tool=callgrind`), which the machine's load does not disturb.
+    if std::env::var_os("KNOTSHAPE_CLOSEST_ONLY").is_some() {
+        let total: f64 = points.iter().map(|&q| search.closest(q).distance).sum();
+        eprintln!("sum of distances {total}");
+        std::process::exit(0);
+    }
+    let wrong = points
+        .iter()
+        .filter(|&&q| search.closest(q).distance > brute_force(&sixty, q) + 1e-9)
+        .count();
+    eprintln!("closest point, 60 poles: {wrong} of {QUERIES} answers worse than brute force");
+    assert_eq!(wrong, 0);
+
+    let mut group = c.benchmark_group("closest_point");
+    group.measurement_time(Duration::from_secs(4));
+    group.throughput(Throughput::Elements(QUERIES as u64));
+    group.bench_function("query_60_poles", |b| {
+        b.iter(|| {
+            for &q in &points {
+                black_box(search.closest(black_box(q)));
+            }
+        })
+    });
+    group.bench_function("pieces_60_poles", |b| {
+        b.iter(|| ClosestPointSearch::new(black_box(&sixty), None).unwrap())
+    });
+    for count in [10, 100, 1_000, 10_000] {
+        let scaled = curve(count, &mut rng);
+        let search = ClosestPointSearch::new(&scaled, None).unwrap();
+        group.bench_with_input(BenchmarkId::new("query_by_poles", count), &count, |b, _| {
+            b.iter(|| {
+                for &q in &points {
+                    black_box(search.closest(black_box(q)));
+                }
+            })
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, bench_closest);
+criterion_main!(benches);
