@@ -3,6 +3,7 @@
 pub mod curves;
 pub mod ops;
 pub mod shape;
+pub mod toolkit;
 
 use axum::Extension;
 
