@@ -225,19 +225,20 @@ impl Curve {
 }
 
 /// The book's span of `u`: `i` with `u_i <= u < u_{i+1}`, `p <= i <= n`, and `n` at the right
-/// end `u >= u_{n+1}` (The NURBS Book A2.1, which [`A5.4`](refine) is written for).
+/// end `u >= u_{n+1}` (The NURBS Book A2.1, which A5.4 is written for: its loop moves the
+/// knots equal to an inserted value to the right of it).
 fn book_span(knots: &[f64], p: usize, n: usize, u: f64) -> usize {
     if u >= knots[n + 1] {
         return n;
     }
-    p + knots[p + 1..=n + 1].partition_point(|&v| v <= u) 
+    p + knots[p + 1..=n + 1].partition_point(|&v| v <= u)
 }
 
 /// The NURBS Book A5.4 (`RefineKnotVectCurve`): the full knot vector `ū` (`knots` with the
 /// sorted values `x` merged in) and the homogeneous control points `Q` over it of the curve
 /// with control points `pw` over `knots`. Working backwards from the right, each inserted
 /// value `x_j` makes the new points `Q_{ind-1} = α Q_{ind-1} + (1 - α) Q_ind` with
-/// `α = (ū_{k+l} - x_j) / (ū_{k+l} - u_{i-l+1})` in `[0, 1]`.
+/// `α = (ū_{k+l} - x_j) / (ū_{k+l} - u_{i-p+l})` in `[0, 1]`.
 fn refine(p: usize, knots: &[f64], pw: &[[f64; 4]], x: &[f64]) -> (Vec<f64>, Vec<[f64; 4]>) {
     let n = pw.len() - 1;
     let m = n + p + 1;
@@ -263,7 +264,7 @@ fn refine(p: usize, knots: &[f64], pw: &[[f64; 4]], x: &[f64]) -> (Vec<f64>, Vec
         for l in 1..=p {
             let ind = k - p + l;
             let numerator = ubar[k + l] - value;
-            let denominator = ubar[k + l] - knots[i + 1 - l];
+            let denominator = ubar[k + l] - knots[i + l - p];
             if numerator == 0.0 || denominator == 0.0 {
                 // α = 0 (a zero denominator only comes with a multiplicity above p).
                 q[ind - 1] = q[ind];
