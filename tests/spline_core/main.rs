@@ -3,6 +3,7 @@
 //! checked against an independent textbook implementation.
 #![allow(clippy::unwrap_used)]
 
+mod editing;
 mod envelope;
 mod evaluation;
 mod generators;
