@@ -92,8 +92,16 @@ impl BezierPiece {
             right[p - r] = row[p - r];
         }
         (
-            BezierPiece { domain: (self.domain.0, at), points: left, ..*self },
-            BezierPiece { domain: (at, self.domain.1), points: right, ..*self },
+            BezierPiece {
+                domain: (self.domain.0, at),
+                points: left,
+                ..*self
+            },
+            BezierPiece {
+                domain: (at, self.domain.1),
+                points: right,
+                ..*self
+            },
         )
     }
 }
@@ -174,7 +182,10 @@ mod tests {
     #[test]
     fn a_split_at_one_half_is_de_casteljaus_midpoint_construction() {
         let mut points = [[0.0; 4]; CAP];
-        for (slot, p) in points.iter_mut().zip([[0.0, 0.0], [1.0, 2.0], [3.0, 2.0], [4.0, 0.0]]) {
+        for (slot, p) in points
+            .iter_mut()
+            .zip([[0.0, 0.0], [1.0, 2.0], [3.0, 2.0], [4.0, 0.0]])
+        {
             *slot = [p[0], p[1], 0.0, 1.0];
         }
         let piece = BezierPiece::new((0.0, 2.0), 3, false, points);
@@ -183,7 +194,23 @@ mod tests {
         assert_eq!(right.domain, (1.0, 2.0));
         let left: Vec<Point> = left.control_points().collect();
         let right: Vec<Point> = right.control_points().collect();
-        assert_eq!(left, [[0.0, 0.0, 0.0], [0.5, 1.0, 0.0], [1.25, 1.5, 0.0], [2.0, 1.5, 0.0]]);
-        assert_eq!(right, [[2.0, 1.5, 0.0], [2.75, 1.5, 0.0], [3.5, 1.0, 0.0], [4.0, 0.0, 0.0]]);
+        assert_eq!(
+            left,
+            [
+                [0.0, 0.0, 0.0],
+                [0.5, 1.0, 0.0],
+                [1.25, 1.5, 0.0],
+                [2.0, 1.5, 0.0]
+            ]
+        );
+        assert_eq!(
+            right,
+            [
+                [2.0, 1.5, 0.0],
+                [2.75, 1.5, 0.0],
+                [3.5, 1.0, 0.0],
+                [4.0, 0.0, 0.0]
+            ]
+        );
     }
 }

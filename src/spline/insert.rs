@@ -116,13 +116,12 @@ impl Curve {
         let mut first_error: Option<InsertError> = None;
         for run in snapped.chunk_by(|a, b| a.0 == b.0) {
             let value = run[0].0;
-            let existing = knots.partition_point(|&u| u <= value) - knots.partition_point(|&u| u < value);
+            let existing =
+                knots.partition_point(|&u| u <= value) - knots.partition_point(|&u| u < value);
             // Within a run the caller's indices ascend, so the first to cross the degree is
             // the earliest offender of this value.
-            if let Some((k, &(_, index))) = run
-                .iter()
-                .enumerate()
-                .find(|(k, _)| existing + k + 1 > p)
+            if let Some((k, &(_, index))) =
+                run.iter().enumerate().find(|(k, _)| existing + k + 1 > p)
             {
                 let error = InsertError::MultiplicityTooHigh {
                     index,
@@ -130,7 +129,11 @@ impl Curve {
                     multiplicity: existing + k + 1,
                     degree: p,
                 };
-                if first_error.as_ref().and_then(InsertError::index).is_none_or(|i| index < i) {
+                if first_error
+                    .as_ref()
+                    .and_then(InsertError::index)
+                    .is_none_or(|i| index < i)
+                {
                     first_error = Some(error);
                 }
             }
@@ -151,7 +154,8 @@ impl Curve {
         if inserted.is_empty() {
             return self.clone();
         }
-        let (knots, homogeneous) = refine(self.degree(), self.knots(), self.homogeneous(), inserted);
+        let (knots, homogeneous) =
+            refine(self.degree(), self.knots(), self.homogeneous(), inserted);
         let (points, weights) = if self.is_rational() {
             let points = homogeneous
                 .iter()
@@ -159,7 +163,10 @@ impl Curve {
                 .collect();
             (points, Some(homogeneous.iter().map(|h| h[3]).collect()))
         } else {
-            (homogeneous.iter().map(|h| [h[0], h[1], h[2]]).collect(), None)
+            (
+                homogeneous.iter().map(|h| [h[0], h[1], h[2]]).collect(),
+                None,
+            )
         };
         Curve::from_valid_parts(
             self.degree(),
@@ -317,8 +324,13 @@ mod tests {
         let curve = bezier();
         let outside = curve.insert_knots(&[0.5, 1.5], 100).unwrap_err();
         assert_eq!(outside.index(), Some(1));
-        assert!(matches!(curve.insert_knots(&[f64::NAN], 100), Err(InsertError::NonFinite { index: 0 })));
-        let too_many = curve.insert_knots(&[0.7, 0.2, 0.2, 0.7, 0.2, 0.2], 100).unwrap_err();
+        assert!(matches!(
+            curve.insert_knots(&[f64::NAN], 100),
+            Err(InsertError::NonFinite { index: 0 })
+        ));
+        let too_many = curve
+            .insert_knots(&[0.7, 0.2, 0.2, 0.7, 0.2, 0.2], 100)
+            .unwrap_err();
         assert_eq!(
             too_many,
             InsertError::MultiplicityTooHigh {
@@ -329,13 +341,28 @@ mod tests {
             }
         );
         // The clamped end already has multiplicity 4.
-        assert_eq!(curve.insert_knots(&[1.0], 100).unwrap_err().index(), Some(0));
+        assert_eq!(
+            curve.insert_knots(&[1.0], 100).unwrap_err().index(),
+            Some(0)
+        );
         // Just outside the domain: snapped onto the end... which is full already.
         let snapped = curve.checked_insertions(&[0.5, 1.0 + 1e-13]);
-        assert!(matches!(snapped, Err(InsertError::MultiplicityTooHigh { index: 1, .. })));
-        assert_eq!(curve.checked_insertions(&[-1e-13, 0.5]).unwrap_err().index(), Some(0));
+        assert!(matches!(
+            snapped,
+            Err(InsertError::MultiplicityTooHigh { index: 1, .. })
+        ));
+        assert_eq!(
+            curve
+                .checked_insertions(&[-1e-13, 0.5])
+                .unwrap_err()
+                .index(),
+            Some(0)
+        );
         let limit = curve.insert_knots(&[0.1, 0.2], 5).unwrap_err();
-        assert_eq!(limit, InsertError::TooManyControlPoints { count: 6, max: 5 });
+        assert_eq!(
+            limit,
+            InsertError::TooManyControlPoints { count: 6, max: 5 }
+        );
     }
 
     #[test]
@@ -353,9 +380,21 @@ mod tests {
             assert!((value - expected).abs() < 1e-15, "{near_start:?}");
         }
         let refined = curve.insert_knots(&[0.1, 0.3, 0.45, 0.55], 100).unwrap();
-        assert_eq!(refined.knots_for_editing(0.5, None).unwrap(), vec![0.625, 0.75]);
-        assert!(matches!(curve.knots_for_editing(0.0, None), Err(InsertError::NoRoomAtDomainEnd { .. })));
-        assert!(matches!(curve.knots_for_editing(1.0, None), Err(InsertError::NoRoomAtDomainEnd { .. })));
-        assert_eq!(curve.knots_for_editing(0.5, Some(0.0)), Err(InsertError::InvalidSpacing));
+        assert_eq!(
+            refined.knots_for_editing(0.5, None).unwrap(),
+            vec![0.625, 0.75]
+        );
+        assert!(matches!(
+            curve.knots_for_editing(0.0, None),
+            Err(InsertError::NoRoomAtDomainEnd { .. })
+        ));
+        assert!(matches!(
+            curve.knots_for_editing(1.0, None),
+            Err(InsertError::NoRoomAtDomainEnd { .. })
+        ));
+        assert_eq!(
+            curve.knots_for_editing(0.5, Some(0.0)),
+            Err(InsertError::InvalidSpacing)
+        );
     }
 }

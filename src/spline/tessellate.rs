@@ -133,8 +133,14 @@ mod tests {
         let points = [[0.0, 0.0], [1.0, 5.0], [2.0, 0.0], [3.0, 5.0]];
         let knots = [0.0, 0.0, 1.0, 2.0, 3.0, 3.0];
         let curve = Curve::new(1, &points, &knots, None, &CurveLimits::default()).unwrap();
-        assert_eq!(curve.tessellate(1e-6, 100).unwrap(), vec![0.0, 1.0, 2.0, 3.0]);
-        assert!(matches!(curve.tessellate(1e-6, 3), Err(TessellationError::TooManyPoints { .. })));
+        assert_eq!(
+            curve.tessellate(1e-6, 100).unwrap(),
+            vec![0.0, 1.0, 2.0, 3.0]
+        );
+        assert!(matches!(
+            curve.tessellate(1e-6, 3),
+            Err(TessellationError::TooManyPoints { .. })
+        ));
     }
 
     #[test]
@@ -146,9 +152,15 @@ mod tests {
         let knots = [0.0, 0.0, 0.0, 1.0, 1.0, 1.0];
         let curve = Curve::new(2, &points, &knots, None, &CurveLimits::default()).unwrap();
         let parameters = curve.tessellate(1.0 / 64.0, 100).unwrap();
-        assert!(parameters.len() > 3 && parameters.len() <= 9, "{parameters:?}");
+        assert!(
+            parameters.len() > 3 && parameters.len() <= 9,
+            "{parameters:?}"
+        );
         assert!(parameters.windows(2).all(|w| w[0] < w[1]));
-        assert_eq!((parameters[0], parameters[parameters.len() - 1]), (0.0, 1.0));
+        assert_eq!(
+            (parameters[0], parameters[parameters.len() - 1]),
+            (0.0, 1.0)
+        );
     }
 
     #[test]
@@ -156,9 +168,18 @@ mod tests {
         let points = [[1e6, 0.0], [1e6 + 1.0, 2.0], [1e6 + 2.0, 0.0]];
         let knots = [0.0, 0.0, 0.0, 1.0, 1.0, 1.0];
         let curve = Curve::new(2, &points, &knots, None, &CurveLimits::default()).unwrap();
-        assert!(matches!(curve.tessellate(1e-4, 10), Err(TessellationError::BelowFloor { .. })));
-        assert!(matches!(curve.tessellate(0.0, 10), Err(TessellationError::BelowFloor { .. })));
-        assert!(matches!(curve.tessellate(f64::NAN, 10), Err(TessellationError::BelowFloor { .. })));
+        assert!(matches!(
+            curve.tessellate(1e-4, 10),
+            Err(TessellationError::BelowFloor { .. })
+        ));
+        assert!(matches!(
+            curve.tessellate(0.0, 10),
+            Err(TessellationError::BelowFloor { .. })
+        ));
+        assert!(matches!(
+            curve.tessellate(f64::NAN, 10),
+            Err(TessellationError::BelowFloor { .. })
+        ));
         assert!(curve.tessellate(1e-2, 1000).is_ok());
     }
 }

@@ -12,3 +12,4 @@ mod ops;
 mod reference;
 mod shape;
 mod shutdown;
+mod toolkit;

@@ -53,7 +53,12 @@ fn inserted_editing_knots_make_a_bezier_piece_editable() {
     let mut pairs = std::collections::BTreeSet::new();
     for target in &targets {
         let outcome = solve(&ShapeQuery::new(&editable, t), target, options).unwrap();
-        assert!(outcome.candidates.iter().all(|c| c.candidate.is_applicable()));
+        assert!(
+            outcome
+                .candidates
+                .iter()
+                .all(|c| c.candidate.is_applicable())
+        );
         reached += usize::from(outcome.reachable());
         for solution in &outcome.solutions {
             // Domain kept: u_3 and u_{n+1} unchanged.
@@ -72,7 +77,11 @@ fn inserted_editing_knots_make_a_bezier_piece_editable() {
             pairs.insert(format!("{:?}", solution.pair));
         }
     }
-    assert!(reached >= targets.len() / 8, "{reached} of {} targets reached", targets.len());
+    assert!(
+        reached >= targets.len() / 8,
+        "{reached} of {} targets reached",
+        targets.len()
+    );
     assert_eq!(sides.len(), 2, "{sides:?}");
     assert!(pairs.len() >= 3, "{pairs:?}");
 }

@@ -108,7 +108,10 @@ fn assert_polyline_within(reference: &Reference, parameters: &[f64], tolerance: 
     assert!(parameters.windows(2).all(|w| w[0] < w[1]), "{parameters:?}");
     for &u in &reference.knots {
         if lo <= u && u <= hi {
-            assert!(parameters.contains(&u), "knot {u} missing from {parameters:?}");
+            assert!(
+                parameters.contains(&u),
+                "knot {u} missing from {parameters:?}"
+            );
         }
     }
     let vertices: Vec<P3> = parameters.iter().map(|&t| reference.point(t)).collect();

@@ -131,14 +131,15 @@ fn insert_knots_request(
                     ),
                 ));
             };
-            let values = refined
-                .knots_for_editing(t, editable.spacing)
-                .map_err(|error| match error {
-                    InsertError::InvalidSpacing => {
-                        ApiError::invalid(at.clone().push("spacing"), error.to_string())
-                    }
-                    _ => ApiError::invalid(parameter.clone(), error.to_string()),
-                })?;
+            let values =
+                refined
+                    .knots_for_editing(t, editable.spacing)
+                    .map_err(|error| match error {
+                        InsertError::InvalidSpacing => {
+                            ApiError::invalid(at.clone().push("spacing"), error.to_string())
+                        }
+                        _ => ApiError::invalid(parameter.clone(), error.to_string()),
+                    })?;
             let editable = refined
                 .insert_knots(&values, limits.max_control_points)
                 .map_err(|error| match error {
@@ -247,9 +248,11 @@ pub async fn bezier(
         .control_points
         .len()
         .saturating_mul(degree.saturating_mul(degree));
-    compute(admission, work, move || bezier_request(&request, &curve_limits))
-        .await
-        .map(ApiJson)
+    compute(admission, work, move || {
+        bezier_request(&request, &curve_limits)
+    })
+    .await
+    .map(ApiJson)
 }
 
 fn bezier_request(

@@ -1,0 +1,534 @@
+//! `/v1/curves/insert-knots`, `/v1/curves/bezier` and evaluate's `tolerance` over HTTP, checked
+//! against the test's own de Boor and a de Casteljau written here; every new 422, and
+//! parameters just outside the domain on every endpoint that takes parameters.
+
+use serde_json::{Value, json};
+
+use crate::helpers::{assert_problem, numbers, points, spawn_app, spawn_app_with};
+use crate::reference::{ReferenceCurve, cubic_2d, distance, rational_3d};
+
+/// The refined curve against the original (coordinates ~10).
+const SAME_CURVE_TOL: f64 = 1e-11;
+
+/// Parameters across the domain `[0, 1]`, knots and ends included.
+fn probes() -> Vec<f64> {
+    let mut t: Vec<f64> = (0..=40).map(|i| i as f64 / 40.0).collect();
+    t.extend([0.2, 0.35, 0.5, 0.75, 0.123, 0.999]);
+    t
+}
+
+/// A single cubic Bézier piece on `[0, 1]`.
+fn bezier_curve() -> ReferenceCurve {
+    ReferenceCurve {
+        degree: 3,
+        points: vec![
+            vec![0.0, 0.0],
+            vec![1.0, 2.0],
+            vec![3.0, 2.0],
+            vec![4.0, 0.0],
+        ],
+        knots: vec![0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0],
+        weights: None,
+    }
+}
+
+/// An unclamped uniform cubic: domain `[3, 8]`.
+fn unclamped() -> ReferenceCurve {
+    ReferenceCurve {
+        degree: 3,
+        points: (0..8)
+            .map(|i| vec![i as f64, ((i * 5) % 3) as f64])
+            .collect(),
+        knots: (0..12).map(f64::from).collect(),
+        weights: None,
+    }
+}
+
+/// De Casteljau on `(w B, w)`, projected.
+fn de_casteljau(points: &[Vec<f64>], weights: Option<&[f64]>, s: f64) -> Vec<f64> {
+    let dimension = points[0].len();
+    let mut work: Vec<Vec<f64>> = points
+        .iter()
+        .enumerate()
+        .map(|(i, b)| {
+            let w = weights.map_or(1.0, |w| w[i]);
+            let mut h: Vec<f64> = b.iter().map(|v| w * v).collect();
+            h.push(w);
+            h
+        })
+        .collect();
+    for level in 1..work.len() {
+        for i in 0..work.len() - level {
+            for c in 0..=dimension {
+                work[i][c] = (1.0 - s) * work[i][c] + s * work[i + 1][c];
+            }
+        }
+    }
+    (0..dimension)
+        .map(|c| work[0][c] / work[0][dimension])
+        .collect()
+}
+
+/// The SVG path read back: the points after each command letter, as `(letter, points)`.
+fn parse_svg_path(path: &str) -> Vec<(char, Vec<Vec<f64>>)> {
+    let mut commands: Vec<(char, Vec<f64>)> = Vec::new();
+    for token in path.split_whitespace() {
+        match token {
+            "M" | "L" | "Q" | "C" => commands.push((token.chars().next().unwrap(), Vec::new())),
+            number => commands
+                .last_mut()
+                .expect("a command before numbers")
+                .1
+                .push(number.parse().expect("a number")),
+        }
+    }
+    commands
+        .into_iter()
+        .map(|(letter, values)| {
+            assert_eq!(values.len() % 2, 0, "{path}");
+            (letter, values.chunks(2).map(<[f64]>::to_vec).collect())
+        })
+        .collect()
+}
+
+#[tokio::test]
+async fn inserted_knots_keep_the_curve_in_the_callers_convention() {
+    let app = spawn_app().await;
+    for (curve, trimmed) in [
+        (cubic_2d(), false),
+        (cubic_2d(), true),
+        (rational_3d(), false),
+        (rational_3d(), true),
+    ] {
+        let knots = [0.9, 0.1, 0.5, 0.1, 0.2, 1e-9];
+        let (status, body) = app
+            .post_json(
+                "/v1/curves/insert-knots",
+                &json!({"curve": curve.to_json(trimmed), "knots": knots}),
+            )
+            .await;
+        assert_eq!(status, 200, "{body}");
+        let mut sorted = knots.to_vec();
+        sorted.sort_by(f64::total_cmp);
+        assert_eq!(numbers(&body["inserted"]), sorted);
+        let sent_knots = curve.to_json(trimmed)["knots"].as_array().unwrap().len();
+        assert_eq!(
+            body["curve"]["knots"].as_array().unwrap().len(),
+            sent_knots + knots.len()
+        );
+        assert_eq!(body["curve"]["weights"].is_array(), curve.weights.is_some());
+        let refined = ReferenceCurve::from_json(&body["curve"]);
+        assert_eq!(refined.points.len(), curve.points.len() + knots.len());
+        for t in probes().into_iter().chain(knots) {
+            let (expected, found) = (curve.point(t), refined.point(t));
+            assert!(
+                distance(&expected, &found) < SAME_CURVE_TOL,
+                "t = {t}: {found:?} vs {expected:?}"
+            );
+        }
+    }
+}
+
+#[tokio::test]
+async fn editable_at_makes_a_bezier_piece_solvable_in_one_request() {
+    let app = spawn_app().await;
+    let curve = bezier_curve();
+    let t = 0.5;
+    let center = curve.point(t);
+    let center = [center[0], center[1]];
+    let targets: Vec<[f64; 2]> = [0.02, 0.05, 0.1, 0.2, 0.3]
+        .into_iter()
+        .flat_map(|radius| {
+            (0..16).map(move |k| {
+                let angle = std::f64::consts::TAU * k as f64 / 16.0;
+                [
+                    center[0] + radius * angle.cos(),
+                    center[1] + radius * angle.sin(),
+                ]
+            })
+        })
+        .collect();
+    let reachable = |body: &Value| body["reachable"] == true;
+    for target in &targets {
+        let (status, body) = app
+            .post_json(
+                "/v1/shape/solve",
+                &json!({"curve": curve.to_json(false), "parameter": t, "target": target}),
+            )
+            .await;
+        assert_eq!(status, 200, "{body}");
+        assert!(!reachable(&body), "the Bézier piece alone has no pair");
+    }
+    let (status, body) = app
+        .post_json(
+            "/v1/curves/insert-knots",
+            &json!({"curve": curve.to_json(false), "editable_at": {"parameter": t}}),
+        )
+        .await;
+    assert_eq!(status, 200, "{body}");
+    assert_eq!(
+        numbers(&body["inserted"]),
+        vec![0.125, 0.25, 0.375, 0.625, 0.75, 0.875]
+    );
+    let mut reached = 0;
+    for target in &targets {
+        let (status, solved) = app
+            .post_json(
+                "/v1/shape/solve",
+                &json!({"curve": body["curve"], "parameter": t, "target": target}),
+            )
+            .await;
+        assert_eq!(status, 200, "{solved}");
+        reached += usize::from(reachable(&solved));
+    }
+    assert!(reached > 0, "no target around s(t) became reachable");
+}
+
+#[tokio::test]
+async fn bezier_segments_are_the_curve_and_the_svg_path_reads_back() {
+    let app = spawn_app().await;
+    for curve in [cubic_2d(), rational_3d(), bezier_curve()] {
+        let (status, body) = app
+            .post_json("/v1/curves/bezier", &json!({"curve": curve.to_json(false)}))
+            .await;
+        assert_eq!(status, 200, "{body}");
+        let segments = body["segments"].as_array().unwrap();
+        let mut breaks = curve.knots.clone();
+        breaks.dedup();
+        assert_eq!(segments.len(), breaks.len() - 1);
+        for (segment, span) in segments.iter().zip(breaks.windows(2)) {
+            assert_eq!(numbers(&segment["domain"]), span);
+            let control = points(&segment["control_points"]);
+            assert_eq!(control.len(), curve.degree + 1);
+            let weights = segment.get("weights").map(numbers);
+            assert_eq!(weights.is_some(), curve.weights.is_some());
+            for k in 0..=10 {
+                let s = k as f64 / 10.0;
+                let u = if k == 10 {
+                    span[1]
+                } else {
+                    span[0] + s * (span[1] - span[0])
+                };
+                let found = de_casteljau(&control, weights.as_deref(), s);
+                let expected = curve.point(u);
+                assert!(distance(&found, &expected) < SAME_CURVE_TOL, "u = {u}");
+            }
+        }
+        let planar = curve.points[0].len() == 2 && curve.weights.is_none();
+        assert_eq!(body["svg_path"].is_string(), planar, "{body}");
+        if planar {
+            let path = parse_svg_path(body["svg_path"].as_str().unwrap());
+            assert_eq!(path[0].0, 'M');
+            assert_eq!(
+                path[0].1,
+                vec![points(&segments[0]["control_points"])[0].clone()]
+            );
+            assert_eq!(path.len(), segments.len() + 1);
+            for (command, segment) in path[1..].iter().zip(segments) {
+                assert_eq!(command.0, 'C');
+                // Bit for bit: the numbers are written as their shortest round-trip text.
+                assert_eq!(command.1, points(&segment["control_points"])[1..]);
+            }
+        }
+    }
+}
+
+#[tokio::test]
+async fn svg_paths_use_l_and_q_for_low_degrees_and_m_after_a_jump() {
+    let app = spawn_app().await;
+    let polyline = json!({"degree": 1, "control_points": [[0, 0], [1, -0.0], [2.5, 1e-7]], "knots": [0, 0, 1, 2, 2]});
+    let (status, body) = app
+        .post_json("/v1/curves/bezier", &json!({"curve": polyline}))
+        .await;
+    assert_eq!(status, 200, "{body}");
+    assert_eq!(body["svg_path"], "M 0 0 L 1 0 L 2.5 1e-7");
+    // A triple interior knot (degree + 1): the curve jumps from (2, 0) to (3, 2) at 1.
+    let quadratic = json!({"degree": 2, "control_points": [[0, 0], [1, 2], [2, 0], [3, 2], [4, 0], [5, 2]],
+        "knots": [0, 0, 0, 1, 1, 1, 2, 2, 2]});
+    let (status, body) = app
+        .post_json("/v1/curves/bezier", &json!({"curve": quadratic}))
+        .await;
+    assert_eq!(status, 200, "{body}");
+    assert_eq!(
+        body["svg_path"], "M 0 0 Q 1 2 2 0 M 3 2 Q 4 0 5 2",
+        "{body}"
+    );
+}
+
+#[tokio::test]
+async fn a_tolerance_gives_a_polyline_within_it() {
+    let app = spawn_app().await;
+    for (curve, tolerance) in [
+        (cubic_2d(), 0.01),
+        (rational_3d(), 0.001),
+        (bezier_curve(), 0.1),
+    ] {
+        let (status, body) = app
+            .post_json(
+                "/v1/curves/evaluate",
+                &json!({"curve": curve.to_json(false), "tolerance": tolerance}),
+            )
+            .await;
+        assert_eq!(status, 200, "{body}");
+        let parameters = numbers(&body["parameters"]);
+        let vertices = points(&body["points"]);
+        assert_eq!(parameters.first(), Some(&0.0));
+        assert_eq!(parameters.last(), Some(&1.0));
+        assert!(parameters.windows(2).all(|w| w[0] < w[1]));
+        for (edge, pair) in parameters.windows(2).enumerate() {
+            for k in 0..=20 {
+                let u = pair[0] + (pair[1] - pair[0]) * k as f64 / 20.0;
+                let q = curve.point(u);
+                let (a, b) = (&vertices[edge], &vertices[edge + 1]);
+                let d: Vec<f64> = a.iter().zip(b).map(|(x, y)| y - x).collect();
+                let len2: f64 = d.iter().map(|v| v * v).sum();
+                let along = (q
+                    .iter()
+                    .zip(a)
+                    .zip(&d)
+                    .map(|((q, a), d)| (q - a) * d)
+                    .sum::<f64>()
+                    / len2)
+                    .clamp(0.0, 1.0);
+                let foot: Vec<f64> = a.iter().zip(&d).map(|(a, d)| a + along * d).collect();
+                assert!(distance(&q, &foot) <= tolerance, "u = {u}");
+            }
+        }
+    }
+}
+
+#[tokio::test]
+async fn every_new_rule_is_a_422_naming_the_field() {
+    let app = spawn_app().await;
+    let curve = cubic_2d().to_json(false);
+    let cases = [
+        (
+            "/v1/curves/insert-knots",
+            json!({"curve": curve, "knots": [0.5, 1.5]}),
+            "/knots/1",
+        ),
+        (
+            "/v1/curves/insert-knots",
+            json!({"curve": curve, "knots": [0.3, 0.5, 0.5, 0.5]}),
+            "/knots/3",
+        ),
+        (
+            "/v1/curves/insert-knots",
+            json!({"curve": curve, "knots": [1.0]}),
+            "/knots/0",
+        ),
+        (
+            "/v1/curves/insert-knots",
+            json!({"curve": curve, "knots": [-1e-9]}),
+            "/knots/0",
+        ),
+        (
+            "/v1/curves/insert-knots",
+            json!({"curve": curve, "editable_at": {"parameter": 0.0}}),
+            "/editable_at/parameter",
+        ),
+        (
+            "/v1/curves/insert-knots",
+            json!({"curve": curve, "editable_at": {"parameter": 2.0}}),
+            "/editable_at/parameter",
+        ),
+        (
+            "/v1/curves/insert-knots",
+            json!({"curve": curve, "editable_at": {"parameter": 0.5, "spacing": 0}}),
+            "/editable_at/spacing",
+        ),
+        (
+            "/v1/curves/insert-knots",
+            json!({"curve": {"degree": 3, "control_points": [[0, 0]], "knots": []}, "knots": [0.5]}),
+            "/curve/control_points",
+        ),
+        (
+            "/v1/curves/bezier",
+            json!({"curve": {"degree": 0, "control_points": [[0, 0]], "knots": [0, 1]}}),
+            "/curve/degree",
+        ),
+        (
+            "/v1/curves/evaluate",
+            json!({"curve": curve, "tolerance": 0.1, "samples": 3}),
+            "/tolerance",
+        ),
+        (
+            "/v1/curves/evaluate",
+            json!({"curve": curve, "tolerance": 0.1, "parameters": [0.5]}),
+            "/tolerance",
+        ),
+        (
+            "/v1/curves/evaluate",
+            json!({"curve": curve, "tolerance": 0}),
+            "/tolerance",
+        ),
+        (
+            "/v1/curves/evaluate",
+            json!({"curve": curve, "tolerance": -1}),
+            "/tolerance",
+        ),
+        (
+            "/v1/curves/evaluate",
+            json!({"curve": curve, "tolerance": 1e-12}),
+            "/tolerance",
+        ),
+        (
+            "/v1/curves/evaluate",
+            json!({"curve": {"degree": 1, "control_points": [[0, 0], [1, 1], [2, 0], [3, 1]],
+            "knots": [0, 0, 0.5, 0.5, 1, 1]}, "tolerance": 0.1}),
+            "/tolerance",
+        ),
+    ];
+    for (path, request, pointer) in cases {
+        let (status, body) = app.post_json(path, &request).await;
+        assert_eq!(status, 422, "{path} {request}: {body}");
+        assert_problem(422, &body, Some(pointer));
+    }
+    // The messages say what is wrong.
+    let (_, body) = app
+        .post_json(
+            "/v1/curves/evaluate",
+            &json!({"curve": curve, "tolerance": 1e-12}),
+        )
+        .await;
+    assert!(
+        body["detail"]
+            .as_str()
+            .unwrap()
+            .contains("double precision"),
+        "{body}"
+    );
+    let (_, body) = app
+        .post_json(
+            "/v1/curves/insert-knots",
+            &json!({"curve": curve, "knots": [0.3, 0.5, 0.5, 0.5]}),
+        )
+        .await;
+    assert!(
+        body["detail"].as_str().unwrap().contains("multiplicity 4"),
+        "{body}"
+    );
+}
+
+#[tokio::test]
+async fn limits_bound_the_polyline_and_the_refined_curve() {
+    let app = spawn_app_with(|config| {
+        config.max_parameters = 50;
+        config.max_control_points = 10;
+    })
+    .await;
+    let curve = cubic_2d().to_json(false);
+    let (status, body) = app
+        .post_json(
+            "/v1/curves/evaluate",
+            &json!({"curve": curve, "tolerance": 1e-6}),
+        )
+        .await;
+    assert_eq!(status, 422, "{body}");
+    assert_problem(422, &body, Some("/tolerance"));
+    assert!(
+        body["detail"]
+            .as_str()
+            .unwrap()
+            .contains("more than 50 points"),
+        "{body}"
+    );
+    let (status, body) = app
+        .post_json(
+            "/v1/curves/evaluate",
+            &json!({"curve": curve, "tolerance": 0.5}),
+        )
+        .await;
+    assert_eq!(status, 200, "{body}");
+    let (status, body) = app
+        .post_json(
+            "/v1/curves/insert-knots",
+            &json!({"curve": curve, "knots": [0.1, 0.3, 0.6]}),
+        )
+        .await;
+    assert_eq!(status, 422, "{body}");
+    assert_problem(422, &body, Some("/knots"));
+    let (status, body) = app
+        .post_json(
+            "/v1/curves/insert-knots",
+            &json!({"curve": curve, "knots": [0.1, 0.3], "editable_at": {"parameter": 0.9}}),
+        )
+        .await;
+    assert_eq!(status, 422, "{body}");
+    assert_problem(422, &body, Some("/editable_at"));
+}
+
+#[tokio::test]
+async fn parameters_just_outside_the_domain_are_its_ends_on_every_endpoint() {
+    let app = spawn_app().await;
+    let curve = cubic_2d();
+    let body_of = |path: &str, parameter: f64| {
+        let mut body = json!({"curve": curve.to_json(false), "parameter": parameter});
+        if path != "/v1/shape/regions" {
+            body["target"] = json!([4.0, 3.0]);
+        }
+        body
+    };
+    let (status, body) = app
+        .post_json(
+            "/v1/curves/evaluate",
+            &json!({"curve": curve.to_json(false), "parameters": [-1e-13, 0.5, 1.0 + 1e-13]}),
+        )
+        .await;
+    assert_eq!(status, 200, "{body}");
+    assert_eq!(numbers(&body["parameters"]), vec![0.0, 0.5, 1.0]);
+    assert_eq!(points(&body["points"])[2], curve.point(1.0));
+    let (status, body) = app
+        .post_json(
+            "/v1/curves/evaluate",
+            &json!({"curve": curve.to_json(false), "parameters": [0.5, 1.0 + 1e-9]}),
+        )
+        .await;
+    assert_eq!(status, 422, "{body}");
+    assert_problem(422, &body, Some("/parameters/1"));
+    for path in [
+        "/v1/shape/membership",
+        "/v1/shape/regions",
+        "/v1/shape/solve",
+    ] {
+        for near_end in [-1e-13, 1.0 + 1e-13] {
+            let (status, body) = app.post_json(path, &body_of(path, near_end)).await;
+            assert_eq!(status, 200, "{path} at {near_end}: {body}");
+        }
+        let (status, body) = app.post_json(path, &body_of(path, 1.0 + 1e-9)).await;
+        assert_eq!(status, 422, "{path}: {body}");
+        assert_problem(422, &body, Some("/parameter"));
+    }
+    // Insertion: just past the end of an unclamped curve is its end, a knot it can take.
+    let unclamped = unclamped();
+    let (status, body) = app
+        .post_json(
+            "/v1/curves/insert-knots",
+            &json!({"curve": unclamped.to_json(false), "knots": [8.0 + 1e-12, 3.0 - 1e-12]}),
+        )
+        .await;
+    assert_eq!(status, 200, "{body}");
+    assert_eq!(numbers(&body["inserted"]), vec![3.0, 8.0]);
+    let refined = ReferenceCurve::from_json(&body["curve"]);
+    for t in [3.0, 3.5, 5.0, 7.9, 8.0] {
+        assert!(
+            distance(&refined.point(t), &unclamped.point(t)) < SAME_CURVE_TOL,
+            "t = {t}"
+        );
+    }
+    let (status, body) = app
+        .post_json(
+            "/v1/curves/insert-knots",
+            &json!({"curve": unclamped.to_json(false), "knots": [8.0 + 1e-6]}),
+        )
+        .await;
+    assert_eq!(status, 422, "{body}");
+    assert_problem(422, &body, Some("/knots/0"));
+    let (status, body) = app
+        .post_json(
+            "/v1/curves/insert-knots",
+            &json!({"curve": curve.to_json(false), "editable_at": {"parameter": 0.5 + 1e-13}}),
+        )
+        .await;
+    assert_eq!(status, 200, "{body}");
+}
