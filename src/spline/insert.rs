@@ -44,7 +44,7 @@ pub enum InsertError {
     /// is an end of the curve, which the knot-pair method cannot move without moving the
     /// domain.
     #[error(
-        "parameter {value} is too close to an end of the domain [{}, {}] to place knots between them",
+        "parameter {value} is too close to an end of the domain [{}, {}] to place knots between them (the end point of a curve cannot move without moving its domain)",
         domain.0, domain.1
     )]
     NoRoomAtDomainEnd { value: f64, domain: (f64, f64) },

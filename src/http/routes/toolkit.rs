@@ -14,7 +14,7 @@ use crate::http::middleware::AdmissionPermit;
 use crate::http::pointer::JsonPointer;
 use crate::http::state::AppState;
 use crate::http::svg_path::svg_path;
-use crate::spline::{BezierPiece, Curve, CurveLimits, InsertError};
+use crate::spline::{BezierPiece, CurveLimits, InsertError};
 
 /// Knots to insert into a curve.
 #[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
@@ -112,10 +112,13 @@ fn insert_knots_request(
     limits: &CurveLimits,
 ) -> Result<InsertKnotsResponse, ApiError> {
     let curve = request.curve.parse(limits, "/curve")?;
+    let knots = JsonPointer::from("/knots");
+    let mut inserted = curve
+        .checked_insertions(&request.knots)
+        .map_err(|error| insertion_error(&error, &knots))?;
     let refined = curve
-        .insert_knots(&request.knots, limits.max_control_points)
-        .map_err(|error| insertion_error(&error, &JsonPointer::from("/knots")))?;
-    let mut inserted = refined_values(&curve, &request.knots);
+        .insert_knots(&inserted, limits.max_control_points)
+        .map_err(|error| insertion_error(&error, &knots))?;
     let refined = match &request.editable_at {
         None => refined,
         Some(editable) => {
@@ -157,11 +160,6 @@ fn insert_knots_request(
         curve: CurveBody::from_curve(&refined),
         inserted,
     })
-}
-
-/// The values of a successful insertion of `values` into `curve`, snapped and sorted.
-fn refined_values(curve: &Curve, values: &[f64]) -> Vec<f64> {
-    curve.checked_insertions(values).unwrap_or_default()
 }
 
 /// The 422 of an insertion error: at `list/index` for one value, at `list` otherwise.
