@@ -9,6 +9,12 @@
 //! `τ` of the piece: the piece's projection onto the chord's line runs continuously from one
 //! end to the other, so each chord point is the foot of some curve point at most `τ` away.
 //! The polyline of the pieces' ends is therefore within Hausdorff distance `τ` of the curve.
+//!
+//! A non-rational piece also has a tighter certified bound, taken when smaller: by linear
+//! precision the chord's point `L(s) = (1 - s) B_0 + s B_p` is `Σ_i L(i/p) b_i(s)`, so
+//! `|C(s) - L(s)| = |Σ_{0<i<p} (B_i - L(i/p)) b_i(s)| <= M (1 - (1 - s)^p - s^p)
+//! <= M (1 - 2^(1-p))` with `M = max_i |B_i - L(i/p)|` (for a quadratic, half the hull
+//! bound), and `L(s)` lies on the chord.
 
 use super::bezier::BezierPiece;
 use super::curve::Curve;
@@ -102,12 +108,24 @@ impl Curve {
     }
 }
 
-/// Whether every control point of `piece` is within `within` of the chord from its first
-/// to its last control point.
+/// Whether the piece is within `within` of the chord from its first to its last control
+/// point: every control point is (the convex-hull bound), or, for a non-rational piece,
+/// `(1 - 2^(1-p)) max_i |B_i - L(i/p)|` is (the linear-precision bound; see the module).
 fn is_flat(piece: &BezierPiece, within: f64) -> bool {
     let p = piece.degree();
     let (first, last) = (piece.control_point(0), piece.control_point(p));
-    (1..p).all(|i| distance_to_segment(piece.control_point(i), first, last) <= within)
+    let hull_flat =
+        || (1..p).all(|i| distance_to_segment(piece.control_point(i), first, last) <= within);
+    if piece.is_rational() || p < 2 {
+        return hull_flat();
+    }
+    let interior_share = 1.0 - 0.5f64.powi(p as i32 - 1);
+    let linear_flat = (1..p).all(|i| {
+        let s = i as f64 / p as f64;
+        let on_chord = std::array::from_fn(|c| (1.0 - s) * first[c] + s * last[c]);
+        interior_share * norm(sub(piece.control_point(i), on_chord)) <= within
+    });
+    linear_flat || hull_flat()
 }
 
 /// The distance from `q` to the segment `[a, b]`.
