@@ -1,20 +1,27 @@
 //! A polyline certified to lie within a tolerance of the curve: the convex-hull flatness bound
 //! on Bézier pieces, split by de Casteljau until every piece is flat.
 //!
-//! A piece lies in the convex hull of its control points (for a rational piece with
-//! positive weights, of its projected control points `B_i / w_i`: the curve point is
-//! `Σ_i (b_i w_i / Σ_k b_k w_k) (B_i / w_i)`, a convex combination). The distance to the chord
-//! from the first to the last control point is a convex function, so when every control point
-//! is within `τ` of the chord, so is the whole piece. Conversely every chord point is within
-//! `τ` of the piece: the piece's projection onto the chord's line runs continuously from one
-//! end to the other, so each chord point is the foot of some curve point at most `τ` away.
-//! The polyline of the pieces' ends is therefore within Hausdorff distance `τ` of the curve.
+//! A piece is a convex combination of its control points (for a rational piece with
+//! positive weights, of its projected control points `P_i`): `C(s) = Σ_i λ_i(s) P_i` with
+//! `λ_i = w_i b_i(s) / Σ_k w_k b_k(s)`, `b_i` the Bernstein polynomials of degree `p`. The
+//! distance to the chord `[P_0, P_p]` is a convex function that vanishes at both ends, so
 //!
-//! A non-rational piece also has a tighter certified bound, taken when smaller: by linear
-//! precision the chord's point `L(s) = (1 - s) B_0 + s B_p` is `Σ_i L(i/p) b_i(s)`, so
-//! `|C(s) - L(s)| = |Σ_{0<i<p} (B_i - L(i/p)) b_i(s)| <= M (1 - (1 - s)^p - s^p)
-//! <= M (1 - 2^(1-p))` with `M = max_i |B_i - L(i/p)|` (for a quadratic, half the hull
-//! bound), and `L(s)` lies on the chord.
+//! `dist(C(s), chord) <= Σ_{0<i<p} λ_i(s) d_i <= D · A / (A + E)`,
+//!
+//! `d_i` the distance of `P_i` to the chord, `D = max_i d_i`, `A = Σ_{0<i<p} w_i b_i <=
+//! a (1 - e)` and `E = w_0 b_0 + w_p b_p >= c e` with `e = (1 - s)^p + s^p >= 2^(1-p)`,
+//! `a` the largest interior weight and `c` the smaller end weight. The ratio grows with `A`,
+//! falls with `E`, and `a (1 - e) / (a (1 - e) + c e)` falls with `e`, so
+//!
+//! `dist(C(s), chord) <= D · a (1 - 2^(1-p)) / (a (1 - 2^(1-p)) + c 2^(1-p))` (the flatness bound),
+//!
+//! at most `D` (every control point within `τ` of the chord: the convex-hull bound), and
+//! `D (1 - 2^(1-p))` for a non-rational piece (half of `D` for a quadratic). A piece is flat
+//! when the bound is at most `τ`; otherwise it is split. Conversely every chord point is
+//! within `τ` of a flat piece: the piece's projection onto the chord's line runs
+//! continuously from one end to the other, so each chord point is the foot of some curve
+//! point at most `τ` away. The polyline of the flat pieces' ends is therefore within
+//! Hausdorff distance `τ` of the curve.
 
 use super::bezier::BezierPiece;
 use super::curve::Curve;
@@ -108,24 +115,24 @@ impl Curve {
     }
 }
 
-/// Whether the piece is within `within` of the chord from its first to its last control
-/// point: every control point is (the convex-hull bound), or, for a non-rational piece,
-/// `(1 - 2^(1-p)) max_i |B_i - L(i/p)|` is (the linear-precision bound; see the module).
+/// Whether the flatness bound of `piece` (see the module) is at most `within`.
 fn is_flat(piece: &BezierPiece, within: f64) -> bool {
     let p = piece.degree();
-    let (first, last) = (piece.control_point(0), piece.control_point(p));
-    let hull_flat =
-        || (1..p).all(|i| distance_to_segment(piece.control_point(i), first, last) <= within);
-    if piece.is_rational() || p < 2 {
-        return hull_flat();
+    if p < 2 {
+        return true;
     }
-    let interior_share = 1.0 - 0.5f64.powi(p as i32 - 1);
-    let linear_flat = (1..p).all(|i| {
-        let s = i as f64 / p as f64;
-        let on_chord = std::array::from_fn(|c| (1.0 - s) * first[c] + s * last[c]);
-        interior_share * norm(sub(piece.control_point(i), on_chord)) <= within
-    });
-    linear_flat || hull_flat()
+    let (first, last) = (piece.control_point(0), piece.control_point(p));
+    let farthest = (1..p)
+        .map(|i| distance_to_segment(piece.control_point(i), first, last))
+        .fold(0.0f64, f64::max);
+    let weights = piece.homogeneous();
+    let interior_weight = weights[1..p].iter().fold(0.0f64, |m, h| m.max(h[3]));
+    let end_weight = weights[0][3].min(weights[p][3]);
+    let ends = 0.5f64.powi(p as i32 - 1);
+    let interior = interior_weight * (1.0 - ends);
+    let share = interior / (interior + end_weight * ends);
+    // `share <= 1`; a NaN (overflowed coordinates) is not flat.
+    share * farthest <= within
 }
 
 /// The distance from `q` to the segment `[a, b]`.
