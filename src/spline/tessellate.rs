@@ -32,6 +32,9 @@ use super::vector::{Point, dot, norm, sub};
 /// no longer negligible, and double precision cannot certify the bound.
 pub const TOLERANCE_FLOOR: f64 = 1e-9;
 
+/// Most parts a piece that is not flat is split into at once.
+const MAX_PARTS: usize = 16;
+
 /// The flatness test compares with `τ` less this margin times the largest coordinate
 /// magnitude, which covers the rounding of de Casteljau's splits and of the evaluator
 /// (well above `100 ε`, well below [`TOLERANCE_FLOOR`]).
@@ -61,8 +64,10 @@ pub enum TessellationError {
 impl Curve {
     /// Increasing parameters, both ends of the domain included, whose curve points make a
     /// polyline within `tolerance` of the curve everywhere (see the module's documentation).
-    /// Every knot span's ends are among them; a span that is not flat is split in halves of
-    /// its parameter interval, recursively, depth first, so the answer is deterministic.
+    /// Every knot span's ends are among them; a piece that is not flat is split (de Casteljau)
+    /// into `k = ⌈√(bound / τ)⌉` parts of equal parameter length (`2 <= k <= 16`: the bound
+    /// shrinks about as the square of the length), recursively, depth first, left to right,
+    /// so the answer is deterministic.
     ///
     /// Bounded work: at most `max_points` parameters are produced (more needed:
     /// [`TessellationError::TooManyPoints`], as soon as the count is exceeded).
@@ -93,33 +98,46 @@ impl Curve {
         for piece in self.bezier_pieces() {
             stack.push(piece);
             while let Some(piece) = stack.pop() {
-                if is_flat(&piece, flat_within) {
+                let bound = flatness_bound(&piece);
+                if bound <= flat_within {
                     if parameters.len() >= max_points {
                         return Err(too_many());
                     }
                     parameters.push(piece.domain.1);
                     continue;
                 }
+                // The bound shrinks about as the square of a part's length: aim at parts
+                // that are flat at once (a NaN bound, from overflow, gives 2 parts).
+                let parts = ((bound / flat_within).sqrt().ceil() as usize).clamp(2, MAX_PARTS);
                 let (a, b) = piece.domain;
-                let middle = a + 0.5 * (b - a);
-                if !(a < middle && middle < b) {
-                    // The parameters cannot be split further in double precision.
-                    return Err(TessellationError::BelowFloor { tolerance, floor });
+                let step = (b - a) / parts as f64;
+                let first = stack.len();
+                let mut rest = piece;
+                for k in 1..parts {
+                    let at = a + k as f64 * step;
+                    let lo = rest.domain.0;
+                    if !(lo < at && at < b) {
+                        // The parameters cannot be split further in double precision.
+                        return Err(TessellationError::BelowFloor { tolerance, floor });
+                    }
+                    let (left, right) = rest.split((at - lo) / (b - lo), at);
+                    stack.push(left);
+                    rest = right;
                 }
-                let (left, right) = piece.split((middle - a) / (b - a), middle);
-                stack.push(right);
-                stack.push(left);
+                stack.push(rest);
+                // Left to right on the stack's top: reverse the parts just pushed.
+                stack[first..].reverse();
             }
         }
         Ok(parameters)
     }
 }
 
-/// Whether the flatness bound of `piece` (see the module) is at most `within`.
-fn is_flat(piece: &BezierPiece, within: f64) -> bool {
+/// The flatness bound of `piece` (see the module): the curve is within it of its chord.
+fn flatness_bound(piece: &BezierPiece) -> f64 {
     let p = piece.degree();
     if p < 2 {
-        return true;
+        return 0.0;
     }
     let (first, last) = (piece.control_point(0), piece.control_point(p));
     let farthest = (1..p)
@@ -131,8 +149,8 @@ fn is_flat(piece: &BezierPiece, within: f64) -> bool {
     let ends = 0.5f64.powi(p as i32 - 1);
     let interior = interior_weight * (1.0 - ends);
     let share = interior / (interior + end_weight * ends);
-    // `share <= 1`; a NaN (overflowed coordinates) is not flat.
-    share * farthest <= within
+    // `share <= 1`; a NaN (overflowed coordinates) is never flat.
+    share * farthest
 }
 
 /// The distance from `q` to the segment `[a, b]`.

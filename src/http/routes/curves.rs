@@ -44,7 +44,7 @@ pub struct EvaluateRequest {
     /// A distance `τ > 0`: answer increasing parameters, both ends and every knot included,
     /// whose points make a polyline within `τ` of the curve everywhere (Hausdorff distance,
     /// in the curve's coordinates). Certified by the convex-hull bound on the Bézier pieces,
-    /// split by de Casteljau (halving the parameter interval) until every control point is
+    /// split by de Casteljau (into parts of equal parameter length) until every control point is
     /// within `τ` of its piece's chord (for rational pieces the projected control points:
     /// positive weights keep the curve in their hull) or, for non-rational pieces, until
     /// `(1 - 2^(1-p)) max_i |B_i - L(i/p)|` is (`L` the chord's linear parametrisation, by
