@@ -32,7 +32,8 @@ use super::vector::{Point, dot, norm, sub};
 /// no longer negligible, and double precision cannot certify the bound.
 pub const TOLERANCE_FLOOR: f64 = 1e-9;
 
-/// Most parts a piece that is not flat is split into at once.
+/// Most parts a piece that is not flat is split into at once; one farther from flatness is
+/// halved instead.
 const MAX_PARTS: usize = 16;
 
 /// The flatness test compares with `τ` less this margin times the largest coordinate
@@ -65,9 +66,9 @@ impl Curve {
     /// Increasing parameters, both ends of the domain included, whose curve points make a
     /// polyline within `tolerance` of the curve everywhere (see the module's documentation).
     /// Every knot span's ends are among them; a piece that is not flat is split (de Casteljau)
-    /// into `k = ⌈√(bound / τ)⌉` parts of equal parameter length (`2 <= k <= 16`: the bound
-    /// shrinks about as the square of the length), recursively, depth first, left to right,
-    /// so the answer is deterministic.
+    /// into `k = ⌈√(bound / τ)⌉` parts of equal parameter length when `k <= 16` (the bound
+    /// shrinks about as the square of the length), else into halves, recursively, depth
+    /// first, left to right, so the answer is deterministic.
     ///
     /// Bounded work: at most `max_points` parameters are produced (more needed:
     /// [`TessellationError::TooManyPoints`], as soon as the count is exceeded).
@@ -106,9 +107,15 @@ impl Curve {
                     parameters.push(piece.domain.1);
                     continue;
                 }
-                // The bound shrinks about as the square of a part's length: aim at parts
-                // that are flat at once (a NaN bound, from overflow, gives 2 parts).
-                let parts = ((bound / flat_within).sqrt().ceil() as usize).clamp(2, MAX_PARTS);
+                // The bound shrinks about as the square of a part's length: near flatness aim
+                // at parts that are flat at once; far from it (or for a NaN bound, from
+                // overflow) halve, and look again at each half.
+                let wanted = (bound / flat_within).sqrt().ceil();
+                let parts = if wanted <= MAX_PARTS as f64 {
+                    (wanted as usize).max(2)
+                } else {
+                    2
+                };
                 let (a, b) = piece.domain;
                 let step = (b - a) / parts as f64;
                 let first = stack.len();
