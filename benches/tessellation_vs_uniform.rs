@@ -92,12 +92,7 @@ fn smallest_uniform_counts(curve: &Curve, tolerance: f64) -> (usize, usize) {
     (first, high)
 }
 
-fn curve(
-    degree: usize,
-    points: &[&[f64]],
-    knots: &[f64],
-    weights: Option<&[f64]>,
-) -> Curve {
+fn curve(degree: usize, points: &[&[f64]], knots: &[f64], weights: Option<&[f64]>) -> Curve {
     Curve::new(degree, points, knots, weights, &CurveLimits::default()).unwrap()
 }
 
@@ -137,7 +132,9 @@ fn main() {
                     &[1.0, -1.0],
                     &[1.0, 0.0],
                 ],
-                &[0.0, 0.0, 0.0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1.0, 1.0, 1.0],
+                &[
+                    0.0, 0.0, 0.0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1.0, 1.0, 1.0,
+                ],
                 Some(&[1.0, h, 1.0, h, 1.0, h, 1.0, h, 1.0]),
             ),
         ),
@@ -176,8 +173,7 @@ fn main() {
                     &[1.0, 0.0, 1.8],
                 ],
                 &[
-                    0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.2, 0.4, 0.6, 0.8, 1.0, 1.0, 1.0, 1.0, 1.0,
-                    1.0,
+                    0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.2, 0.4, 0.6, 0.8, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0,
                 ],
                 None,
             ),

@@ -210,7 +210,7 @@ impl Curve {
         let mut previous = t;
         for k in 1..=missing_below {
             let value = t - k as f64 * h_below;
-            if !(lo < value && value < previous) {
+            if value <= lo || value >= previous {
                 return Err(no_room());
             }
             values.push(value);
@@ -221,7 +221,7 @@ impl Curve {
         let mut previous = t;
         for k in 1..=missing_above {
             let value = t + k as f64 * h_above;
-            if !(previous < value && value < hi) {
+            if value <= previous || value >= hi {
                 return Err(no_room());
             }
             values.push(value);

@@ -83,7 +83,7 @@ impl Curve {
             .flatten()
             .fold(0.0f64, |m, v| m.max(v.abs()));
         let floor = TOLERANCE_FLOOR * scale;
-        if !(tolerance > 0.0 && tolerance >= floor) {
+        if tolerance.is_nan() || tolerance <= 0.0 || tolerance < floor {
             return Err(TessellationError::BelowFloor { tolerance, floor });
         }
         if let Some(&value) = self.jump_knots().first() {
@@ -123,7 +123,7 @@ impl Curve {
                 for k in 1..parts {
                     let at = a + k as f64 * step;
                     let lo = rest.domain.0;
-                    if !(lo < at && at < b) {
+                    if at <= lo || at >= b {
                         // The parameters cannot be split further in double precision.
                         return Err(TessellationError::BelowFloor { tolerance, floor });
                     }

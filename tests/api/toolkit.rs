@@ -59,8 +59,9 @@ fn de_casteljau(points: &[Vec<f64>], weights: Option<&[f64]>, s: f64) -> Vec<f64
         .collect();
     for level in 1..work.len() {
         for i in 0..work.len() - level {
-            for c in 0..=dimension {
-                work[i][c] = (1.0 - s) * work[i][c] + s * work[i + 1][c];
+            let next = work[i + 1].clone();
+            for (value, later) in work[i].iter_mut().zip(next) {
+                *value = (1.0 - s) * *value + s * later;
             }
         }
     }

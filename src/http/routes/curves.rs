@@ -156,7 +156,7 @@ fn evaluate_request(
             ));
             None
         }
-        (None, None, Some(tolerance)) if !(tolerance > 0.0) => {
+        (None, None, Some(tolerance)) if tolerance.is_nan() || tolerance <= 0.0 => {
             errors.push(FieldError::new(
                 "/tolerance",
                 "`tolerance` must be greater than 0",
