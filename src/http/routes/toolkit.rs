@@ -45,6 +45,7 @@ pub struct InsertKnotsRequest {
 /// Where a curve is to be made editable by the knot-pair method.
 #[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
 #[serde(deny_unknown_fields)]
+#[schema(example = json!({"parameter": 0.5, "spacing": 0.1}))]
 pub struct EditableAt {
     /// The picked parameter `t`, inside the domain but not at its ends (the curve's end point
     /// cannot move without moving the domain). One outside it by at most `1e-12` of its
@@ -184,6 +185,7 @@ pub struct BezierRequest {
 
 /// One Bézier piece.
 #[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+#[schema(example = json!({"domain": [0, 0.5], "control_points": [[0, 0], [1, 2], [2, 2], [2.75, 1.5]]}))]
 pub struct BezierSegment {
     /// `[lo, hi]`: the knot span it covers; the piece is
     /// `Σ_i B_i C(p, i) s^i (1 - s)^(p - i)`, `s = (u - lo) / (hi - lo)` (rational: the
