@@ -50,16 +50,21 @@ fn push_pair(path: &mut String, point: [f64; 3]) {
     }
 }
 
-/// The shortest text that reads back as `value` (as JSON answers write numbers), with whole
-/// numbers without `.0` and both zeros as `0`; an exponent (`1e300`, `1e-7`) where that is
-/// shorter, which SVG's number grammar accepts. Precondition: `value` is finite.
+/// The shortest text that reads back as `value`: Rust's `Display` and `LowerExp` of `f64`
+/// both write the fewest digits that round-trip, the first without an exponent (whole
+/// numbers without `.0`), the second with one (`1e300`, `1e-7`, which SVG's number grammar
+/// accepts); the shorter is taken, and both zeros are `0`. Precondition: `value` is finite.
 pub fn number(value: f64) -> String {
     if value == 0.0 {
         return "0".to_owned();
     }
-    let mut buffer = zmij::Buffer::new();
-    let text = buffer.format_finite(value);
-    text.strip_suffix(".0").unwrap_or(text).to_owned()
+    let plain = value.to_string();
+    let exponent = format!("{value:e}");
+    if exponent.len() < plain.len() {
+        exponent
+    } else {
+        plain
+    }
 }
 
 #[cfg(test)]
