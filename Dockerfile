@@ -1,15 +1,27 @@
-# syntax=docker/dockerfile:1
 # knotshape container image: a multi-stage build. The builder compiles the
 # release binary with the committed Cargo.lock (--locked); the runtime image is
 # distroless (glibc + libgcc, no shell, no package manager) running as a
-# numeric non-root user. Build with BuildKit (the default since Docker 23):
+# numeric non-root user. Needs a builder that knows `RUN --mount=type=cache`:
+# BuildKit (Docker 23 or newer, its default) or Podman/Buildah.
 #   docker build -t knotshape .
 #   docker run --rm -p 8080:8080 --read-only knotshape
+# (`podman build` / `podman run` take the same arguments.)
+#
+# The two base images are build arguments, so that a site that mirrors images
+# can build it, e.g.
+#   docker build -t knotshape
+#     --build-arg RUST_IMAGE=mirror.example/library/rust:1.95-slim-bookworm
+#     --build-arg RUNTIME_IMAGE=mirror.example/distroless/cc-debian12:nonroot .
+# (one command, written over three lines).
+# Keep the pair matched: the runtime must have the glibc the builder linked
+# against (Debian 12 "bookworm" for both). The names are fully qualified, so
+# Podman needs no short-name resolution.
 
-ARG RUST_VERSION=1.95
+ARG RUST_IMAGE=docker.io/library/rust:1.95-slim-bookworm
+ARG RUNTIME_IMAGE=gcr.io/distroless/cc-debian12:nonroot
 
 # ---------------------------------------------------------------- builder ---
-FROM rust:${RUST_VERSION}-slim-bookworm AS builder
+FROM ${RUST_IMAGE} AS builder
 WORKDIR /src
 
 # The whole context (filtered by .dockerignore) is copied: a dummy-main
@@ -31,7 +43,7 @@ RUN --mount=type=cache,target=/usr/local/cargo/registry,sharing=locked \
 # against. The :nonroot tag already defines uid/gid 65532; it is repeated below
 # as a number so that Kubernetes' runAsNonRoot can verify it without
 # resolving a user name.
-FROM gcr.io/distroless/cc-debian12:nonroot AS runtime
+FROM ${RUNTIME_IMAGE} AS runtime
 
 LABEL org.opencontainers.image.title="knotshape" \
       org.opencontainers.image.description="HTTP microservice that evaluates B-spline/NURBS curves and edits their shape by moving knot pairs" \

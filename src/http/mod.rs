@@ -7,7 +7,6 @@
 pub mod curve;
 pub mod error;
 pub mod extract;
-pub mod json_out;
 pub mod metrics;
 pub mod middleware;
 pub mod pointer;
@@ -15,6 +14,7 @@ pub mod routes;
 pub mod server;
 pub mod state;
 pub mod svg_path;
+pub mod wire;
 
 use std::sync::Arc;
 
@@ -35,7 +35,7 @@ use utoipa_axum::routes;
 
 use crate::config::Config;
 use error::{FieldError, PROBLEM_JSON, Problem};
-use routes::{curves, ops, shape, toolkit};
+use routes::{closest, curves, ops, shape, toolkit};
 pub use server::{Server, shutdown_signal};
 pub use state::{AppState, Readiness};
 
@@ -93,6 +93,7 @@ fn v1_routes() -> OpenApiRouter<AppState> {
     OpenApiRouter::new()
         .routes(routes!(curves::evaluate))
         .routes(routes!(curves::envelope))
+        .routes(routes!(closest::closest_point))
         .routes(routes!(toolkit::insert_knots))
         .routes(routes!(toolkit::bezier))
         .routes(routes!(shape::membership))
@@ -258,6 +259,6 @@ mod tests {
     fn the_document_names_every_route() {
         let document = openapi();
         let paths: Vec<&String> = document.paths.paths.keys().collect();
-        assert_eq!(paths.len(), 11, "{paths:?}");
+        assert_eq!(paths.len(), 12, "{paths:?}");
     }
 }

@@ -1,5 +1,5 @@
 //! Candidates: which knot next to the picked parameter moves, its control triangle, and the
-//! target's frame coordinates (MATH.md §3 "Which knot moves", "Frame", §4, §5).
+//! target's frame coordinates (docs/method.md §3.1, §3.3, §7, §8).
 
 use crate::spline::Curve;
 use crate::spline::vector::{Point, cross, dot, norm, sub};
@@ -57,8 +57,8 @@ impl SideChoice {
 /// The target in the control triangle's frame: the quadratic envelope's basis values
 /// `x = N_{j-2}^3(t)`, `y = N_j^3(t)` that put the envelope point on the target.
 ///
-/// Non-rational: `p = d_{j-1} + x (d_{j-2} - d_{j-1}) + y (d_j - d_{j-1})`. Rational (MATH.md
-/// §4): with barycentric `(λ0, λ1, λ2)` of `p`, `S = λ0/w_{j-2} + λ1/w_{j-1} + λ2/w_j`,
+/// Non-rational: `p = d_{j-1} + x (d_{j-2} - d_{j-1}) + y (d_j - d_{j-1})`. Rational (docs/method.md
+/// §7): with barycentric `(λ0, λ1, λ2)` of `p`, `S = λ0/w_{j-2} + λ1/w_{j-1} + λ2/w_j`,
 /// `x = (λ0/w_{j-2}) / S`, `y = (λ2/w_j) / S`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Frame {
@@ -170,7 +170,7 @@ pub fn candidate(curve: &Curve, t: f64, side: Side, target: Option<Point>) -> Ca
     candidate
 }
 
-/// The basis-value frame of barycentric `(λ0, 1 - λ0 - λ2, λ2)` (MATH.md §4); equal to
+/// The basis-value frame of barycentric `(λ0, 1 - λ0 - λ2, λ2)` (docs/method.md §7); equal to
 /// `(λ0, λ2)` for a non-rational curve. When `S <= 0` (only for targets far outside the
 /// triangle, which no knot pair reaches) it falls back to the geometric `(λ0, λ2)`.
 fn weighted_frame(curve: &Curve, span: usize, lambda0: f64, lambda2: f64) -> Frame {

@@ -17,6 +17,7 @@
 //! Casteljau), its midpoint value raising `best`, until none may. Near a maximum the bound
 //! tightens with the square of the interval's width: the first worked example takes 15 halvings.
 
+use crate::spline::bernstein::{BINOMIAL, MAX_RATIO_DEGREE, convolve, halve, unscale};
 use crate::spline::{Curve, MAX_DEGREE};
 
 /// Relative precision of the squared deviation: the answer `d` is a distance the curves
@@ -35,27 +36,6 @@ const MAX_HALVINGS: usize = 4096;
 /// Gaps below this fraction of the control net's size count as zero (rounding noise).
 const ZERO_GAP: f64 = 1e-13;
 
-/// Largest degree of the polynomials `N` and `D`: `4p` for rational curves.
-const MAX_RATIO_DEGREE: usize = 4 * MAX_DEGREE;
-
-/// `BINOMIAL[n][k] = C(n, k)` for `n <= MAX_RATIO_DEGREE`, by Pascal's triangle.
-static BINOMIAL: [[f64; MAX_RATIO_DEGREE + 1]; MAX_RATIO_DEGREE + 1] = pascal_triangle();
-
-const fn pascal_triangle() -> [[f64; MAX_RATIO_DEGREE + 1]; MAX_RATIO_DEGREE + 1] {
-    let mut table = [[0.0; MAX_RATIO_DEGREE + 1]; MAX_RATIO_DEGREE + 1];
-    let mut n = 0;
-    while n <= MAX_RATIO_DEGREE {
-        table[n][0] = 1.0;
-        let mut k = 1;
-        while k <= n {
-            table[n][k] = table[n - 1][k - 1] + table[n - 1][k];
-            k += 1;
-        }
-        n += 1;
-    }
-    table
-}
-
 /// Largest distance `|s_old(u) - s_new(u)|` for `u` in `interval` (outside it the two curves
 /// agree) and in both curves' domains, where `s_old` is `curve` and `s_new` has the same
 /// control net (and weights) over the full knot vector `new_knots`.
@@ -67,6 +47,25 @@ const fn pascal_triangle() -> [[f64; MAX_RATIO_DEGREE + 1]; MAX_RATIO_DEGREE + 1
 /// Preconditions: `new_knots` is a full, non-decreasing knot vector of `curve`'s length with
 /// a non-empty domain.
 pub fn max_deviation(curve: &Curve, new_knots: &[f64], interval: (f64, f64)) -> f64 {
+    max_deviation_between(curve, curve, new_knots, interval)
+}
+
+/// Largest distance `|s_old(u) - s_new(u)|` for `u` in `interval` between `curve` and
+/// `moved`, a curve of the same degree, control point count and rationality over the same
+/// knots (a control-point edit), certified as [`max_deviation`] is.
+pub fn max_deviation_of_moved_poles(curve: &Curve, moved: &Curve, interval: (f64, f64)) -> f64 {
+    debug_assert_eq!(curve.degree(), moved.degree());
+    debug_assert_eq!(curve.is_rational(), moved.is_rational());
+    max_deviation_between(curve, moved, moved.knots(), interval)
+}
+
+/// The deviation between `curve` and the control net of `moved` over `new_knots`.
+fn max_deviation_between(
+    curve: &Curve,
+    moved: &Curve,
+    new_knots: &[f64],
+    interval: (f64, f64),
+) -> f64 {
     let old_knots = curve.knots();
     let (p, end) = (curve.degree(), curve.control_points().len());
     // Both curves are defined on the intersection of their domains.
@@ -78,10 +77,10 @@ pub fn max_deviation(curve: &Curve, new_knots: &[f64], interval: (f64, f64)) -> 
     // Cubics (every shape request) get copies compiled for their exact sizes: 4 Bézier points,
     // 7 coefficients (13 when rational).
     let squared = match (p, curve.is_rational()) {
-        (3, false) => maximum_squared_gap::<4, 7>(curve, 3, new_knots, lo, hi, false),
-        (3, true) => maximum_squared_gap::<4, 13>(curve, 3, new_knots, lo, hi, true),
+        (3, false) => maximum_squared_gap::<4, 7>(curve, moved, 3, new_knots, lo, hi, false),
+        (3, true) => maximum_squared_gap::<4, 13>(curve, moved, 3, new_knots, lo, hi, true),
         (p, rational) => maximum_squared_gap::<{ MAX_DEGREE + 1 }, { MAX_RATIO_DEGREE + 1 }>(
-            curve, p, new_knots, lo, hi, rational,
+            curve, moved, p, new_knots, lo, hi, rational,
         ),
     };
     squared.sqrt()
@@ -103,6 +102,7 @@ struct Interval<const LEN: usize> {
 #[inline(always)]
 fn maximum_squared_gap<const POINTS: usize, const LEN: usize>(
     curve: &Curve,
+    moved: &Curve,
     p: usize,
     new_knots: &[f64],
     lo: f64,
@@ -117,7 +117,7 @@ fn maximum_squared_gap<const POINTS: usize, const LEN: usize>(
     // each piece between consecutive values becomes one interval of the search.
     let mut stack: Vec<Interval<LEN>> = Vec::with_capacity(2 * (p + 2) + MAX_DEPTH as usize);
     let mut old_pieces = PieceCursor::<POINTS>::new(curve, old_knots);
-    let mut new_pieces = PieceCursor::<POINTS>::new(curve, new_knots);
+    let mut new_pieces = PieceCursor::<POINTS>::new(moved, new_knots);
     let (mut i, mut k) = (0, 0);
     let mut start = lo;
     loop {
@@ -332,43 +332,6 @@ fn squared_gap_on_piece<const POINTS: usize, const LEN: usize>(
     interval
 }
 
-/// `out += sign · a * b` (convolution: `out_k += sign Σ_{i+j=k} a_i b_j`), the product of two
-/// polynomials in the scaled Bernstein basis; `out` has `a.len() + b.len() - 1` entries.
-#[inline(always)]
-fn convolve(a: &[f64], b: &[f64], out: &mut [f64], sign: f64) {
-    debug_assert_eq!(out.len(), a.len() + b.len() - 1);
-    for (i, &a_i) in a.iter().enumerate() {
-        let a_i = sign * a_i;
-        for (product, &b_j) in out[i..].iter_mut().zip(b) {
-            *product += a_i * b_j;
-        }
-    }
-}
-
-/// Scaled-basis coefficients (`C(d, k)` times the Bernstein ones) to Bernstein coefficients.
-#[inline(always)]
-fn unscale(coefficients: &mut [f64]) {
-    let degree = coefficients.len() - 1;
-    for (k, value) in coefficients.iter_mut().enumerate() {
-        *value /= BINOMIAL[degree][k];
-    }
-}
-
-/// Splits a Bernstein polynomial on `[0, 1]` at `1/2` (de Casteljau): `left` and `right` get
-/// the coefficients of its halves, each again on `[0, 1]`.
-#[inline(always)]
-fn halve(coefficients: &[f64], left: &mut [f64], right: &mut [f64]) {
-    let n = coefficients.len() - 1;
-    right.copy_from_slice(coefficients);
-    left[0] = coefficients[0];
-    for (level, first) in left.iter_mut().enumerate().skip(1) {
-        for i in 0..n - level + 1 {
-            right[i] = 0.5 * (right[i] + right[i + 1]);
-        }
-        *first = right[0];
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -422,7 +385,7 @@ mod tests {
         );
     }
 
-    /// The control net of the first worked example (`../shared/docs/examples.json`).
+    /// The control net of the first worked example (`tests/data/examples.json`, docs/method.md §10).
     const PLANAR_NET: [&[f64]; 8] = [
         &[0.0, 0.0],
         &[1.0, 3.0],

@@ -1,5 +1,5 @@
 //! The shape core: move a curve point `s(t)` to a target by moving knots (Juhász & Hoffmann;
-//! Tornai's knot pairs Ω1–Ω6), per MATH.md §3–5.
+//! Tornai's knot pairs Ω1–Ω6), per docs/method.md §3–§8.
 //!
 //! For a cubic curve and a picked parameter `t`, one knot next to `t` moves to `t` (the
 //! [`Side`]); two more knots around it (a [`KnotPair`]) are solved in closed form so that
@@ -7,7 +7,9 @@
 //! no HTTP, wire-format or logging types.
 
 mod candidate;
+mod control_points;
 mod deviation;
+mod nearest;
 mod pairs;
 mod regions;
 mod solve;
@@ -16,7 +18,9 @@ pub use candidate::{
     Candidate, DEGENERACY_TOLERANCE, Frame, NotApplicable, PLANE_TOLERANCE, Side, SideChoice,
     candidate, frame_to_point,
 };
-pub use deviation::{DEVIATION_RELATIVE_TOLERANCE, max_deviation};
+pub use control_points::{CONTROL_POINT_RESIDUAL, ControlPointSolution, control_point_move};
+pub use deviation::{DEVIATION_RELATIVE_TOLERANCE, max_deviation, max_deviation_of_moved_poles};
+pub use nearest::{NEAREST_SAMPLING_TOLERANCE, NearestOutcome, nearest_reachable};
 pub use pairs::{
     CLAMP_TOLERANCE, FRAME_ZERO_TOLERANCE, KNOT_TOLERANCE, KnotPair, LocalKnot, LocalKnots,
     solve_pair,

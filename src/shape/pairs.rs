@@ -1,4 +1,4 @@
-//! The six knot pairs Ω1–Ω6 and their closed-form solutions (MATH.md §3, paper §3.1–3.2).
+//! The six knot pairs Ω1–Ω6 and their closed-form solutions (docs/method.md §4, paper §3.1–3.2).
 //!
 //! Every pair solves the paper's equations (2) for two of the four knots `a, b, c, e`
 //! around the moved knot, the other two staying fixed:

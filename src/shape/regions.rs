@@ -1,5 +1,5 @@
 //! Region boundaries for drawing: each region `Ω_r` as the image of its parameter domain's
-//! perimeter under `(unknowns) → (x, y)` (MATH.md "Regions and their boundaries").
+//! perimeter under `(unknowns) → (x, y)` (docs/method.md §5).
 //!
 //! Polygons are for drawing only; membership is decided exactly by solving
 //! ([`super::membership`]).
@@ -93,7 +93,7 @@ pub fn region_polygons(
 }
 
 /// The corners of `pair`'s parameter domain, in order around it, as values of its two
-/// unknowns (MATH.md's domain table).
+/// unknowns (docs/method.md §5.1).
 pub fn domain_corners(pair: KnotPair, k: &LocalKnots) -> Vec<[f64; 2]> {
     let (l, a, b, t, c, e, r) = (k.l, k.a, k.b, k.t, k.c, k.e, k.r);
     match pair {

@@ -1,5 +1,5 @@
 //! The knot-pair solver: new knot vectors that move the curve point `s(t)` to a target
-//! (MATH.md §3–5), and region membership through the very same code path.
+//! (docs/method.md §3–§8), and region membership through the very same code path.
 
 use super::candidate::{Candidate, Side, SideChoice, candidate, triangle_size};
 use super::deviation::max_deviation;
@@ -66,7 +66,7 @@ pub struct ShapeQuery<'a> {
     pub side: SideChoice,
     /// The knot pairs to try.
     pub pairs: &'a [KnotPair],
-    /// Drop solutions that change `u_{k-1}` or `u_{n+1}` (MATH.md "Keeping the curve's domain"),
+    /// Drop solutions that change `u_{k-1}` or `u_{n+1}` (docs/method.md §6),
     /// or that move a knot onto a clamped end (which moves the end point just the same).
     pub keep_domain: bool,
 }
@@ -204,7 +204,7 @@ pub struct SolveOptions {
     pub measure_deviation: bool,
 }
 
-/// Solves `s(t) → target` for every requested side and knot pair (MATH.md §3).
+/// Solves `s(t) → target` for every requested side and knot pair (docs/method.md §3).
 ///
 /// Per applicable candidate `j`: the new knots are `u_{j+1} := t` plus the pair's two
 /// unknowns from [`solve_pair`]. A solution is dropped when `keep_domain` is set and it
@@ -221,7 +221,6 @@ pub fn solve(
     let target = target_point(curve, target)?;
     let t = query.parameter;
     let knots = curve.knots();
-    let n = curve.control_points().len() - 1;
     let mut candidates = Vec::with_capacity(2);
     let mut solutions = Vec::new();
     // Each root's knot vector is tried in this buffer; only kept solutions get their own copy.
@@ -237,53 +236,31 @@ pub fn solve(
         };
         let j = candidate.span;
         let local = LocalKnots::from_full(knots, j, t);
-        let target_magnitude = target.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-        let accepted_residual =
-            RESIDUAL_TOLERANCE * triangle_size(&triangle) + 64.0 * f64::EPSILON * target_magnitude;
+        let accepted_residual = accepted_residual(&triangle, target);
         let mut regions = Vec::with_capacity(query.pairs.len());
         for &pair in query.pairs {
             let [first, second] = pair.unknowns();
             let mut contains = false;
             let (roots, count) = solve_pair(pair, &local, frame.x, frame.y);
-            for &[a, b, c, e] in &roots[..count] {
-                new_knots.copy_from_slice(knots);
-                new_knots[j - 1] = a;
-                new_knots[j] = b;
-                new_knots[j + 1] = t;
-                new_knots[j + 2] = c;
-                new_knots[j + 3] = e;
-                if query.keep_domain && moves_domain_ends(knots, &new_knots) {
-                    continue;
-                }
-                let domain_ok = new_knots[3] < new_knots[n + 1];
-                if !domain_ok || !new_knots[3..=n + 1].iter().all(|&u| u.is_finite()) {
-                    continue;
-                }
-                let point = curve.point_with_knots(&new_knots, t);
-                let residual = distance(point, target);
-                if residual.is_nan() || residual > accepted_residual {
-                    continue;
-                }
-                let changed_knots: Vec<usize> = (0..knots.len())
-                    .filter(|&i| new_knots[i] != knots[i])
-                    .collect();
-                let affected_domain = affected_domain(curve, &new_knots, &changed_knots);
-                let max_deviation = options
-                    .measure_deviation
-                    .then(|| max_deviation(curve, &new_knots, affected_domain));
-                contains = true;
-                solutions.push(Solution {
+            for &local_knots in &roots[..count] {
+                let edit = KnotEdit {
                     pair,
                     side,
                     span: j,
-                    moved_knot: j + 1,
-                    changed_knots,
-                    knots: new_knots.clone(),
-                    point,
-                    residual,
-                    affected_domain,
-                    max_deviation,
-                });
+                    local_knots,
+                };
+                let solution = knot_solution(
+                    query,
+                    &edit,
+                    target,
+                    accepted_residual,
+                    &mut new_knots,
+                    options.measure_deviation,
+                );
+                if let Some(solution) = solution {
+                    contains = true;
+                    solutions.push(solution);
+                }
             }
             regions.push(RegionMembership {
                 pair,
@@ -294,15 +271,91 @@ pub fn solve(
         candidates.push(CandidateOutcome { candidate, regions });
     }
     if options.measure_deviation {
-        solutions.sort_by(|p, q| {
-            let key = |s: &Solution| s.max_deviation.unwrap_or(f64::INFINITY);
-            key(p).total_cmp(&key(q))
-        });
+        sort_by_deviation(&mut solutions);
     }
     Ok(SolveOutcome {
         candidates,
         solutions,
     })
+}
+
+/// A proposed knot edit of one candidate: `u_{j+1} := t` and the pair's new local knots.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct KnotEdit {
+    pub pair: KnotPair,
+    pub side: Side,
+    pub span: usize,
+    /// The new `[a, b, c, e]` (two of them changed by the pair).
+    pub local_knots: [f64; 4],
+}
+
+/// The solution of `edit`, or `None` when a rule drops it: it moves the domain's ends under
+/// `keep_domain`, empties the domain, has a non-finite knot, or its new curve, evaluated by the
+/// spline core at `t`, misses `target` by more than `accepted_residual`. `buffer` is scratch of
+/// the knot vector's length.
+pub(crate) fn knot_solution(
+    query: &ShapeQuery,
+    edit: &KnotEdit,
+    target: Point,
+    accepted_residual: f64,
+    buffer: &mut [f64],
+    measure_deviation: bool,
+) -> Option<Solution> {
+    let curve = query.curve;
+    let knots = curve.knots();
+    let n = curve.control_points().len() - 1;
+    let (j, t) = (edit.span, query.parameter);
+    let [a, b, c, e] = edit.local_knots;
+    buffer.copy_from_slice(knots);
+    buffer[j - 1] = a;
+    buffer[j] = b;
+    buffer[j + 1] = t;
+    buffer[j + 2] = c;
+    buffer[j + 3] = e;
+    if query.keep_domain && moves_domain_ends(knots, buffer) {
+        return None;
+    }
+    let domain_ok = buffer[3] < buffer[n + 1];
+    if !domain_ok || !buffer[3..=n + 1].iter().all(|&u| u.is_finite()) {
+        return None;
+    }
+    let point = curve.point_with_knots(buffer, t);
+    let residual = distance(point, target);
+    if residual.is_nan() || residual > accepted_residual {
+        return None;
+    }
+    let changed_knots: Vec<usize> = (0..knots.len())
+        .filter(|&i| buffer[i] != knots[i])
+        .collect();
+    let affected_domain = affected_domain(curve, buffer, &changed_knots);
+    let max_deviation = measure_deviation.then(|| max_deviation(curve, buffer, affected_domain));
+    Some(Solution {
+        pair: edit.pair,
+        side: edit.side,
+        span: j,
+        moved_knot: j + 1,
+        changed_knots,
+        knots: buffer.to_vec(),
+        point,
+        residual,
+        affected_domain,
+        max_deviation,
+    })
+}
+
+/// The residual a solution may have: `RESIDUAL_TOLERANCE` times the control triangle's
+/// longest edge, plus the rounding floor `64 ε |target|`.
+pub(crate) fn accepted_residual(triangle: &[Point; 3], target: Point) -> f64 {
+    let target_magnitude = target.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    RESIDUAL_TOLERANCE * triangle_size(triangle) + 64.0 * f64::EPSILON * target_magnitude
+}
+
+/// Sorts solutions by `max_deviation`, smallest first (unmeasured ones last).
+pub(crate) fn sort_by_deviation(solutions: &mut [Solution]) {
+    solutions.sort_by(|p, q| {
+        let key = |s: &Solution| s.max_deviation.unwrap_or(f64::INFINITY);
+        key(p).total_cmp(&key(q))
+    });
 }
 
 /// Every solution is verified: the new curve, evaluated by the spline core at `t`, lands within

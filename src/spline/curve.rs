@@ -1,6 +1,6 @@
 //! The validated curve type: degree, control points, knots (either convention) and weights.
 
-use super::basis::{MAX_DEGREE, find_span};
+use super::basis::{MAX_DEGREE, basis_functions, find_span};
 use super::vector::Point;
 
 /// A parameter outside the domain by at most this fraction of the domain's length is taken as
@@ -366,6 +366,31 @@ impl Curve {
             knots,
             ..self.clone()
         })
+    }
+
+    /// The same curve with other control points (same count and dimension; `z = 0` for a
+    /// planar curve), or `None` when a coordinate is not finite.
+    pub fn with_control_points(&self, control_points: Vec<Point>) -> Option<Curve> {
+        let valid = control_points.len() == self.control_points.len()
+            && control_points.iter().flatten().all(|v| v.is_finite());
+        valid.then(|| {
+            Curve::from_valid_parts(
+                self.degree,
+                self.dimension,
+                control_points,
+                self.weights.clone(),
+                self.knots.clone(),
+                self.convention,
+            )
+        })
+    }
+
+    /// The basis functions that can be non-zero at `t` (in the domain): the index `i0` of the
+    /// first, and `N_{i0}(t) ..= N_{i0+p}(t)` (The NURBS Book, A2.2) in `out[0..=p]`.
+    pub fn basis_at(&self, t: f64, out: &mut [f64; MAX_DEGREE + 1]) -> usize {
+        let span = self.span(t);
+        basis_functions(&self.knots, self.degree, span, t, out);
+        span - self.degree
     }
 
     /// The degree `p`.

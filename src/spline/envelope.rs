@@ -1,4 +1,4 @@
-//! The envelope of the family of curves made by moving a run of equal knots (MATH.md §2).
+//! The envelope of the family of curves made by moving a run of equal knots (docs/method.md §2).
 //!
 //! Moving the run `u_i = … = u_{i+m-1}` (multiplicity `m`, `1 <= m <= p - 1`) together to
 //! `τ ∈ [u_{i-1}, u_{i+m}]` gives curves `s(u; τ)` whose envelope is the B-spline of degree

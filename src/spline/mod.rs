@@ -1,12 +1,14 @@
 //! The spline core: validated B-spline/NURBS curves, evaluation, the knot-moving envelope,
 //! knot insertion, Bézier pieces and certified tessellation.
 //!
-//! Pure geometry: no HTTP, wire-format or logging types. Conventions follow MATH.md §1:
+//! Pure geometry: no HTTP, wire-format or logging types. Conventions follow docs/method.md §1:
 //! degree `p`, order `k = p + 1`, control points `d_0 ..= d_n`, full knot vector
 //! `u_0 ..= u_{n+p+1}`, domain `[u_p, u_{n+1}]`.
 
 mod basis;
+pub(crate) mod bernstein;
 mod bezier;
+mod closest;
 mod curve;
 mod envelope;
 mod eval;
@@ -18,6 +20,7 @@ pub mod vector;
 
 pub use basis::MAX_DEGREE;
 pub use bezier::{BezierPiece, BezierPieces};
+pub use closest::{CLOSEST_POINT_TOLERANCE, ClosestPoint, ClosestPointError, ClosestPointSearch};
 pub use curve::{
     Curve, CurveError, CurveField, CurveLimits, DOMAIN_END_SLACK, DOMAIN_END_ULPS, Dimension,
     KnotConvention,

@@ -58,7 +58,7 @@ impl Curve {
 
     /// The Bézier points of `[a, b]` inside `span` (the span of `knots` that holds `a`, so
     /// `b <=` its end), as [`Curve::bezier_span_rest_with_knots`] describes them.
-    fn bezier_piece_in_span(
+    pub(crate) fn bezier_piece_in_span(
         &self,
         knots: &[f64],
         span: usize,

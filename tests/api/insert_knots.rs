@@ -165,6 +165,16 @@ async fn parameters_just_outside_the_domain_are_its_ends_on_every_endpoint() {
         .await;
     assert_eq!(status, 422, "{body}");
     assert_problem(422, &body, Some("/parameters/1"));
+    let closest = |range: [f64; 2]| json!({"curve": curve.to_json(false), "points": [[4.0, 3.0]], "range": range});
+    let (status, body) = app
+        .post_json("/v1/curves/closest-point", &closest([-1e-13, 1.0 + 1e-13]))
+        .await;
+    assert_eq!(status, 200, "{body}");
+    let (status, body) = app
+        .post_json("/v1/curves/closest-point", &closest([0.0, 1.0 + 1e-9]))
+        .await;
+    assert_eq!(status, 422, "{body}");
+    assert_problem(422, &body, Some("/range/1"));
     for path in [
         "/v1/shape/membership",
         "/v1/shape/regions",

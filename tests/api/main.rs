@@ -3,7 +3,9 @@
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
 mod auth;
+mod closest;
 mod curves;
+mod edit;
 mod errors;
 mod examples;
 mod helpers;

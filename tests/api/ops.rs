@@ -74,6 +74,7 @@ async fn the_served_document_is_the_generated_one() {
     for path in [
         "/v1/curves/evaluate",
         "/v1/curves/envelope",
+        "/v1/curves/closest-point",
         "/v1/shape/membership",
         "/v1/shape/regions",
         "/v1/shape/solve",

@@ -3,6 +3,7 @@
 //! checked against an independent textbook implementation.
 #![allow(clippy::unwrap_used)]
 
+mod closest;
 mod editing;
 mod envelope;
 mod evaluation;

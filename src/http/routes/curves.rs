@@ -344,7 +344,7 @@ pub struct EnvelopeResponse {
 ///
 /// The family of curves made by moving the run of equal knots that holds `knot_index` has an
 /// envelope: the B-spline of degree `p - m` with the same control points and the knot vector
-/// without the run (MATH.md §2).
+/// without the run (docs/method.md §2).
 #[utoipa::path(
     post,
     path = "/v1/curves/envelope",

@@ -1,5 +1,6 @@
 //! Request handlers, one module per resource group.
 
+pub mod closest;
 pub mod curves;
 pub mod ops;
 pub mod shape;

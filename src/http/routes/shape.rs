@@ -1,5 +1,5 @@
 //! `POST /v1/shape/membership`, `/v1/shape/regions` and `/v1/shape/solve`: the knot-pair
-//! method (MATH.md §3–5) over the wire. Knot indices and vectors are converted from the
+//! method (docs/method.md §3–§8) over the wire. Knot indices and vectors are converted from the
 //! core's full convention to the caller's.
 
 use axum::Extension;
@@ -11,11 +11,11 @@ use super::compute;
 use crate::config::Limits;
 use crate::http::curve::{CurveBody, WirePoint, point_to_wire};
 use crate::http::error::{ApiError, FieldError, Problem};
-use crate::http::extract::{ApiJson, RESPONSE_CAPACITY};
-use crate::http::json_out::JsonOut;
+use crate::http::extract::ApiJson;
 use crate::http::middleware::AdmissionPermit;
 use crate::http::pointer::JsonPointer;
 use crate::http::state::AppState;
+use crate::http::wire::methods::{ControlPointMembershipBody, Method, Methods};
 use crate::shape::{
     self, Candidate, KnotPair, PolygonOptions, ShapeError, ShapeField, ShapeQuery, Side,
     SideChoice, SolveOptions, SolveOutcome,
@@ -177,6 +177,16 @@ pub struct ShapeRequest {
     #[serde(default = "keep_domain_default")]
     #[schema(default = true, example = true)]
     pub keep_domain: bool,
+    /// Solve only: when no solution reaches the target, answer `nearest`, the reachable point
+    /// closest to it (default `false`). Membership ignores it.
+    #[serde(default)]
+    #[schema(example = false)]
+    pub nearest: bool,
+    /// The ways to move the point (default `["knots"]`): `knots` (the knot pairs) and/or
+    /// `control_points` (the least-squares move of the poles whose basis is non-zero at `t`).
+    #[serde(default)]
+    #[schema(value_type = Option<Vec<Method>>, example = json!(["knots", "control_points"]))]
+    pub methods: Option<Vec<String>>,
 }
 
 /// A picked parameter whose regions' boundaries are wanted.
@@ -217,7 +227,7 @@ pub struct RegionsRequest {
 }
 
 /// The target in the control triangle's frame:
-/// `p = d_{j-1} + x (d_{j-2} - d_{j-1}) + y (d_j - d_{j-1})` (rational: MATH.md §4).
+/// `p = d_{j-1} + x (d_{j-2} - d_{j-1}) + y (d_j - d_{j-1})` (rational: docs/method.md §7).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
 #[schema(example = json!({"x": 0.18, "y": 0.1067}))]
 pub struct FrameBody {
@@ -241,7 +251,7 @@ pub struct CandidateBody {
     /// triangle's plane).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub reason: Option<String>,
-    /// The span `j` of MATH.md §3 (full-vector numbering: the moved knot is `u_{j+1}`, the
+    /// The span `j` of docs/method.md §3.1 (full-vector numbering: the moved knot is `u_{j+1}`, the
     /// triangle is `d_{j-2}, d_{j-1}, d_j`).
     #[schema(example = 4)]
     pub span: usize,
@@ -286,40 +296,78 @@ pub struct MembershipCandidate {
 #[schema(example = json!({"reachable": true, "candidates": [{"side": "left", "applicable": true, "span": 4, "moved_knot": 5,
               "triangle": [[3.0, 4.0], [5.0, 3.5], [6.0, 1.0]], "frame": {"x": 0.18, "y": 0.106667}, "regions": [{"region": "omega2", "knots": [4, 6], "contains": true}, {"region": "omega4", "knots": [3, 6], "contains": false}]}]}))]
 pub struct MembershipResponse {
-    /// Whether any region of any candidate holds the target.
+    /// Whether any requested method reaches the target: a region of a candidate holds it, or
+    /// the control-point move was asked for.
     pub reachable: bool,
     /// One entry per requested side.
     pub candidates: Vec<MembershipCandidate>,
+    /// The control-point move, when `methods` holds `control_points`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub control_points: Option<ControlPointMembershipBody>,
 }
 
-/// One way to move `s(t)` onto the target.
+/// One way to move `s(t)` onto the target: new knots (`method: "knots"`, with `region`,
+/// `side`, `span`, `moved_knot`, `changed_knots`, `knots`) or new control points
+/// (`method: "control_points"`, with `control_points`, `changed_control_points`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
-#[schema(example = json!({"region": "omega2", "side": "left", "span": 4, "moved_knot": 5, "changed_knots": [4, 5, 6],
+#[schema(example = json!({"method": "knots", "region": "omega2", "side": "left", "span": 4, "moved_knot": 5, "changed_knots": [4, 5, 6],
      "knots": [0, 0, 0, 0, 0.3, 0.42, 0.6, 0.75, 1, 1, 1, 1], "point": [4.746667, 3.323333],
      "residual": 3.2e-15, "affected_domain": [0, 1], "max_deviation": 1.030559}))]
 pub struct SolutionBody {
-    /// The region (knot pair) that reaches the target.
-    pub region: Region,
-    /// Which knot moved to `t`.
-    pub side: CandidateSide,
-    /// The span `j` (full-vector numbering, as in the candidates).
-    pub span: usize,
-    /// Index (caller's convention) of the knot set to `t`.
-    pub moved_knot: usize,
-    /// Indices (caller's convention) of the knots whose values changed, ascending.
-    pub changed_knots: Vec<usize>,
-    /// The whole new knot vector, in the caller's convention.
-    pub knots: Vec<f64>,
+    /// How the point is moved.
+    pub method: Method,
+    /// The region (knot pair) that reaches the target (knot solutions).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub region: Option<Region>,
+    /// Which knot moved to `t` (knot solutions).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub side: Option<CandidateSide>,
+    /// The span `j` (full-vector numbering, as in the candidates; knot solutions).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub span: Option<usize>,
+    /// Index (caller's convention) of the knot set to `t` (knot solutions).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub moved_knot: Option<usize>,
+    /// Indices (caller's convention) of the knots whose values changed, ascending (knot
+    /// solutions).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub changed_knots: Option<Vec<usize>>,
+    /// The whole new knot vector, in the caller's convention (knot solutions).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub knots: Option<Vec<f64>>,
+    /// The whole new list of control points, in the caller's order (control-point solutions).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schema(value_type = Option<Vec<Vec<f64>>>)]
+    pub control_points: Option<Vec<WirePoint>>,
+    /// Indices of the control points that moved, ascending (control-point solutions).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub changed_control_points: Option<Vec<usize>>,
     /// The new curve's point at `parameter`.
     #[schema(value_type = Vec<f64>)]
     pub point: WirePoint,
-    /// `|point - target|`.
+    /// `|point - target|` (for `nearest` solutions: `|point - nearest.point|`).
     pub residual: f64,
     /// `[lo, hi]`: outside it the new curve equals the old one.
     pub affected_domain: [f64; 2],
     /// Largest distance between the old and the new curve (certified to a relative 5e-11 by
     /// Bernstein branch and bound).
     pub max_deviation: f64,
+}
+
+/// The reachable point nearest to an unreachable target, and the solutions that reach it.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
+#[schema(example = json!({"point": [5.2, 3.9], "distance": 0.41, "solutions": [{"method": "knots", "region": "omega3", "side": "right", "span": 5, "moved_knot": 6, "changed_knots": [6, 7, 8],
+     "knots": [0, 0, 0, 0, 0.2, 0.35, 0.42, 0.61, 0.97, 1, 1, 1], "point": [5.2, 3.9],
+     "residual": 0.0, "affected_domain": [0.2, 1], "max_deviation": 0.83}]}))]
+pub struct NearestBody {
+    /// The nearest reachable point (Euclidean, in the curve's coordinates), as the first
+    /// solution's new curve gives it at `parameter`.
+    #[schema(value_type = Vec<f64>)]
+    pub point: WirePoint,
+    /// `|point - target|`.
+    pub distance: f64,
+    /// Every solution that reaches `point`, sorted by `max_deviation`.
+    pub solutions: Vec<SolutionBody>,
 }
 
 /// New knot vectors that move `s(t)` to the target.
@@ -333,82 +381,12 @@ pub struct SolveResponse {
     pub reachable: bool,
     /// One entry per requested side, with region membership.
     pub candidates: Vec<MembershipCandidate>,
-    /// Every solution, sorted by `max_deviation`, smallest first.
+    /// Every solution of every requested method, sorted by `max_deviation`, smallest first.
     pub solutions: Vec<SolutionBody>,
-}
-
-impl SolveResponse {
-    /// The answer as JSON text, byte for byte what its `Serialize` derive gives (a test
-    /// checks), without escaping the constant keys: this is the service's hottest answer.
-    pub fn to_json(&self) -> JsonOut {
-        let mut out = JsonOut::with_capacity(RESPONSE_CAPACITY);
-        out.raw("{\"reachable\":");
-        out.bool(self.reachable);
-        out.raw(",\"candidates\":");
-        out.array(&self.candidates, |out, entry| {
-            let candidate = &entry.candidate;
-            out.raw("{\"side\":\"");
-            out.raw(candidate.side.wire_name());
-            out.raw("\",\"applicable\":");
-            out.bool(candidate.applicable);
-            if let Some(reason) = &candidate.reason {
-                out.raw(",\"reason\":");
-                out.string(reason);
-            }
-            out.raw(",\"span\":");
-            out.usize(candidate.span);
-            out.raw(",\"moved_knot\":");
-            out.usize(candidate.moved_knot);
-            if let Some(triangle) = &candidate.triangle {
-                out.raw(",\"triangle\":");
-                out.array(triangle, |out, point| out.f64s(point.as_slice()));
-            }
-            if let Some(frame) = &candidate.frame {
-                out.raw(",\"frame\":{\"x\":");
-                out.f64(frame.x);
-                out.raw(",\"y\":");
-                out.f64(frame.y);
-                out.raw("}");
-            }
-            out.raw(",\"regions\":");
-            out.array(&entry.regions, |out, membership| {
-                out.raw("{\"region\":\"");
-                out.raw(membership.region.wire_name());
-                out.raw("\",\"knots\":");
-                out.usizes(&membership.knots);
-                out.raw(",\"contains\":");
-                out.bool(membership.contains);
-                out.raw("}");
-            });
-            out.raw("}");
-        });
-        out.raw(",\"solutions\":");
-        out.array(&self.solutions, |out, solution| {
-            out.raw("{\"region\":\"");
-            out.raw(solution.region.wire_name());
-            out.raw("\",\"side\":\"");
-            out.raw(solution.side.wire_name());
-            out.raw("\",\"span\":");
-            out.usize(solution.span);
-            out.raw(",\"moved_knot\":");
-            out.usize(solution.moved_knot);
-            out.raw(",\"changed_knots\":");
-            out.usizes(&solution.changed_knots);
-            out.raw(",\"knots\":");
-            out.f64s(&solution.knots);
-            out.raw(",\"point\":");
-            out.f64s(solution.point.as_slice());
-            out.raw(",\"residual\":");
-            out.f64(solution.residual);
-            out.raw(",\"affected_domain\":");
-            out.f64s(&solution.affected_domain);
-            out.raw(",\"max_deviation\":");
-            out.f64(solution.max_deviation);
-            out.raw("}");
-        });
-        out.raw("}");
-        out
-    }
+    /// With `nearest: true`, when no solution reaches the target: the nearest reachable
+    /// point. Absent when the target is reachable or nothing at all is.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub nearest: Option<NearestBody>,
 }
 
 /// One region's boundary.
@@ -484,13 +462,27 @@ pub async fn membership(
     // Validation is linear in the control points; the method itself is local and bounded.
     let work = request.curve.control_points.len();
     compute(admission, work, move || {
+        let methods = Methods::parse(request.methods.as_deref())?;
         let parsed = ParsedShape::parse(&request.curve, &request.regions, &curve_limits)?;
         let query = parsed.query(request.parameter, request.side, request.keep_domain);
         let outcome =
             shape::membership(&query, &request.target).map_err(|error| shape_error(&error))?;
+        let control_points = methods.control_points.then(|| {
+            let target = shape::target_point(&parsed.curve, &request.target).ok();
+            let moved = target.and_then(|target| {
+                shape::control_point_move(&parsed.curve, query.parameter, target, false)
+            });
+            ControlPointMembershipBody {
+                contains: moved.is_some(),
+                changed_control_points: moved.map_or_else(Vec::new, |m| m.changed_control_points),
+            }
+        });
+        let knots_reach = methods.knots && outcome.reachable();
+        let poles_reach = control_points.as_ref().is_some_and(|c| c.contains);
         Ok(MembershipResponse {
-            reachable: outcome.reachable(),
+            reachable: knots_reach || poles_reach,
             candidates: membership_candidates(&parsed.curve, &outcome),
+            control_points,
         })
     })
     .await
@@ -518,51 +510,61 @@ pub async fn solve(
     State(state): State<AppState>,
     admission: Option<Extension<AdmissionPermit>>,
     ApiJson(request): ApiJson<ShapeRequest>,
-) -> Result<JsonOut, ApiError> {
+) -> Result<ApiJson<SolveResponse>, ApiError> {
     let curve_limits = state.curve_limits;
     // Validation is linear in the control points; the method itself is local and bounded.
     let work = request.curve.control_points.len();
     compute(admission, work, move || {
+        let methods = Methods::parse(request.methods.as_deref())?;
         let parsed = ParsedShape::parse(&request.curve, &request.regions, &curve_limits)?;
         let query = parsed.query(request.parameter, request.side, request.keep_domain);
-        let outcome = shape::solve(
-            &query,
-            &request.target,
-            SolveOptions {
-                measure_deviation: true,
-            },
-        )
-        .map_err(|error| shape_error(&error))?;
+        let options = SolveOptions {
+            measure_deviation: true,
+        };
+        let outcome =
+            shape::solve(&query, &request.target, options).map_err(|error| shape_error(&error))?;
         let curve = &parsed.curve;
-        let dimension = curve.dimension();
-        let solutions = outcome
-            .solutions
-            .iter()
-            .map(|solution| SolutionBody {
-                region: solution.pair.into(),
-                side: solution.side.into(),
-                span: solution.span,
-                moved_knot: caller_knot_index(curve, solution.moved_knot),
-                changed_knots: solution
-                    .changed_knots
+        let target =
+            shape::target_point(curve, &request.target).map_err(|error| shape_error(&error))?;
+        let mut solutions: Vec<SolutionBody> = Vec::new();
+        if methods.knots {
+            solutions.extend(
+                outcome
+                    .solutions
                     .iter()
-                    .map(|&full| caller_knot_index(curve, full))
-                    .collect(),
-                knots: knots_in_caller_convention(curve, &solution.knots),
-                point: point_to_wire(solution.point, dimension),
-                residual: solution.residual,
-                affected_domain: [solution.affected_domain.0, solution.affected_domain.1],
-                max_deviation: solution.max_deviation.unwrap_or(0.0),
-            })
-            .collect();
+                    .map(|s| knot_solution_body(curve, s)),
+            );
+        }
+        if methods.control_points {
+            let moved = shape::control_point_move(curve, query.parameter, target, true);
+            solutions.extend(moved.map(|m| control_point_solution_body(curve, &m)));
+        }
+        solutions.sort_by(|p, q| p.max_deviation.total_cmp(&q.max_deviation));
+        let nearest = if request.nearest && methods.knots && solutions.is_empty() {
+            shape::nearest_reachable(&query, target, true)
+                .map_err(|error| shape_error(&error))?
+                .map(|nearest| NearestBody {
+                    point: point_to_wire(nearest.point, curve.dimension()),
+                    distance: nearest.distance,
+                    solutions: nearest
+                        .solutions
+                        .iter()
+                        .map(|s| knot_solution_body(curve, s))
+                        .collect(),
+                })
+        } else {
+            None
+        };
         let response = SolveResponse {
-            reachable: outcome.reachable(),
+            reachable: !solutions.is_empty(),
             candidates: membership_candidates(curve, &outcome),
             solutions,
+            nearest,
         };
-        Ok(response.to_json())
+        Ok(response)
     })
     .await
+    .map(ApiJson)
 }
 
 /// The regions' boundary polygons.
@@ -724,6 +726,60 @@ impl ParsedShape {
             pairs: &self.pairs,
             keep_domain,
         }
+    }
+}
+
+/// The wire form of a knot solution.
+fn knot_solution_body(curve: &Curve, solution: &shape::Solution) -> SolutionBody {
+    SolutionBody {
+        method: Method::Knots,
+        region: Some(solution.pair.into()),
+        side: Some(solution.side.into()),
+        span: Some(solution.span),
+        moved_knot: Some(caller_knot_index(curve, solution.moved_knot)),
+        changed_knots: Some(
+            solution
+                .changed_knots
+                .iter()
+                .map(|&full| caller_knot_index(curve, full))
+                .collect(),
+        ),
+        knots: Some(knots_in_caller_convention(curve, &solution.knots)),
+        control_points: None,
+        changed_control_points: None,
+        point: point_to_wire(solution.point, curve.dimension()),
+        residual: solution.residual,
+        affected_domain: [solution.affected_domain.0, solution.affected_domain.1],
+        max_deviation: solution.max_deviation.unwrap_or(0.0),
+    }
+}
+
+/// The wire form of a control-point solution.
+fn control_point_solution_body(
+    curve: &Curve,
+    solution: &shape::ControlPointSolution,
+) -> SolutionBody {
+    let dimension = curve.dimension();
+    SolutionBody {
+        method: Method::ControlPoints,
+        region: None,
+        side: None,
+        span: None,
+        moved_knot: None,
+        changed_knots: None,
+        knots: None,
+        control_points: Some(
+            solution
+                .control_points
+                .iter()
+                .map(|&p| point_to_wire(p, dimension))
+                .collect(),
+        ),
+        changed_control_points: Some(solution.changed_control_points.clone()),
+        point: point_to_wire(solution.point, dimension),
+        residual: solution.residual,
+        affected_domain: [solution.affected_domain.0, solution.affected_domain.1],
+        max_deviation: solution.max_deviation.unwrap_or(0.0),
     }
 }
 

@@ -1,0 +1,5 @@
+//! Request and response types of the API (what travels on the wire) and their conversions
+//! from and to core types; handlers live in [`super::routes`].
+
+pub mod closest;
+pub mod methods;

@@ -1,0 +1,669 @@
+//! The closest point of a curve to a query point: the global minimum of the distance over a
+//! parameter range, with the range's ends and the curve's corners included.
+//!
+//! The range is cut into Bézier pieces, one per knot span (blossoming). On a piece with
+//! homogeneous Bézier points `(X_i, W_i)` and local parameter `s ∈ [0, 1]`, the squared
+//! distance to `q` is `g(s) = N(s) / D(s)` with
+//!
+//! * `N = |X(s) - q W(s)|²` (degree `2p`) and `D = W(s)²` (`D = 1` for polynomial curves),
+//!   both in Bernstein form;
+//! * since every coefficient of `D` is positive (positive weights), `g >= min_k N_k / D_k` on
+//!   the piece: a lower bound (the convex hull property of the graph of `g`), which tightens
+//!   with the square of the width as a piece is halved;
+//! * `g'` has the sign of `M = N' D - N D'` (`M = N'` when `D = 1`), also in Bernstein form.
+//!
+//! The search first takes the distance at every piece's ends (range ends and corners among
+//! them: a corner is a piece end). Then, left to right, each piece that its bounding box does
+//! not rule out is searched depth first: a part is dropped when its lower bound cannot come
+//! within the tolerance of the best distance found; a part where `M`'s coefficients change
+//! sign once, from negative to positive, holds exactly one interior minimum, found by Newton's
+//! method safeguarded by bisection on `M`; a part where `M` has one sign has its minimum at an
+//! end; any other part is halved (de Casteljau). The candidates are then measured again with
+//! the curve evaluator, and the smallest parameter among those within
+//! [`CLOSEST_POINT_TOLERANCE`] of the least distance is the answer. Work per query is bounded
+//! ([`MAX_HALVINGS`] halvings), whatever the input.
+
+use super::MAX_DEGREE;
+use super::basis::find_span;
+use super::bernstein::{BINOMIAL, MAX_RATIO_DEGREE, convolve, halve, unscale, value_and_slope};
+use super::curve::Curve;
+use super::vector::{Point, distance};
+
+/// Ties and precision: among parameters whose distances lie within
+/// `CLOSEST_POINT_TOLERANCE · (size + d)` of the least distance `d` (`size`: the diagonal of the
+/// control points' bounding box), the smallest is returned.
+pub const CLOSEST_POINT_TOLERANCE: f64 = 1e-12;
+
+/// Rounding allowance of the Bernstein values of the squared distance, relative to
+/// `(size + d)²`: the search keeps parts that may lie this close to the best value, so that
+/// noise never prunes the true minimum (the candidates are measured again exactly).
+const SQUARED_NOISE: f64 = 64.0 * f64::EPSILON;
+
+/// Halvings of one piece at most: its parts are then `2^-52` of it.
+const MAX_DEPTH: u32 = 52;
+
+/// Halvings per query at most, which bounds the time whatever the input.
+pub const MAX_HALVINGS: usize = 4096;
+
+/// Iterations of the safeguarded Newton method at most (bisection alone needs about 60).
+const MAX_ROOT_ITERATIONS: usize = 100;
+
+/// Why a closest-point search cannot run.
+#[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
+pub enum ClosestPointError {
+    /// An end of the range is not a finite number.
+    #[error("range end {index} is not a finite number")]
+    NonFiniteRange { index: usize },
+    /// An end of the range lies outside the curve's domain.
+    #[error("range end {value} lies outside the domain [{}, {}]", domain.0, domain.1)]
+    RangeOutsideDomain {
+        index: usize,
+        value: f64,
+        domain: (f64, f64),
+    },
+    /// The range's lower end is above its upper end.
+    #[error("the range [{lo}, {hi}] is reversed: its first value must not exceed its second")]
+    ReversedRange { lo: f64, hi: f64 },
+}
+
+impl ClosestPointError {
+    /// Which end of the range (0 or 1) is at fault.
+    pub fn range_index(&self) -> usize {
+        match *self {
+            ClosestPointError::NonFiniteRange { index }
+            | ClosestPointError::RangeOutsideDomain { index, .. } => index,
+            ClosestPointError::ReversedRange { .. } => 0,
+        }
+    }
+}
+
+/// The closest point found for one query.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ClosestPoint {
+    /// The parameter `u` of the closest point.
+    pub parameter: f64,
+    /// The curve point `s(u)`.
+    pub point: Point,
+    /// `|s(u) - q|`.
+    pub distance: f64,
+}
+
+/// A curve's range cut into Bézier pieces, ready for many queries.
+#[derive(Debug, Clone)]
+pub struct ClosestPointSearch<'c> {
+    curve: &'c Curve,
+    range: (f64, f64),
+    /// Homogeneous Bézier points, `p + 1` per piece.
+    points: Vec<[f64; 4]>,
+    pieces: Vec<PieceBox>,
+    size: f64,
+    /// `s(hi)` when the curve jumps at `hi` (it then differs from the last piece's end).
+    end_point: Option<Point>,
+}
+
+/// A piece's parameter interval and the bounding box of its projected Bézier points (which
+/// holds the piece: positive weights keep the convex hull property).
+#[derive(Debug, Clone, Copy)]
+struct PieceBox {
+    lo: f64,
+    hi: f64,
+    /// The parameter that stands for the piece's end: `hi`, or the float just below it when
+    /// the curve jumps there (an interior knot of multiplicity `p + 1`), where the piece's end
+    /// is the limit from the left and `s(hi)` the next piece's start.
+    end_parameter: f64,
+    min: Point,
+    max: Point,
+}
+
+impl PieceBox {
+    /// The squared distance from `q` to the box: a lower bound for the piece.
+    fn squared_distance(&self, q: Point, coordinates: usize) -> f64 {
+        (0..coordinates)
+            .map(|c| {
+                let gap = (self.min[c] - q[c]).max(q[c] - self.max[c]).max(0.0);
+                gap * gap
+            })
+            .sum()
+    }
+}
+
+impl<'c> ClosestPointSearch<'c> {
+    /// Cuts `range` (default: the whole domain) of `curve` into Bézier pieces. An end of the
+    /// range just outside the domain is taken as the domain's end ([`Curve::snap_to_domain`]).
+    pub fn new(curve: &'c Curve, range: Option<(f64, f64)>) -> Result<Self, ClosestPointError> {
+        let domain = curve.domain();
+        let (lo, hi) = range.unwrap_or(domain);
+        // Ends just outside the domain are its ends (`Curve::snap_to_domain`).
+        let mut ends = [lo, hi];
+        for (index, value) in ends.iter_mut().enumerate() {
+            if !value.is_finite() {
+                return Err(ClosestPointError::NonFiniteRange { index });
+            }
+            *value = curve
+                .snap_to_domain(*value)
+                .ok_or(ClosestPointError::RangeOutsideDomain {
+                    index,
+                    value: *value,
+                    domain,
+                })?;
+        }
+        let [lo, hi] = ends;
+        if lo > hi {
+            return Err(ClosestPointError::ReversedRange { lo, hi });
+        }
+        let p = curve.degree();
+        let knots = curve.knots();
+        let mut points = Vec::new();
+        let mut pieces = Vec::new();
+        let mut start = lo;
+        let mut out = [[0.0; 4]; MAX_DEGREE + 1];
+        while start < hi {
+            let span = find_span(knots, p, start);
+            let end = knots[span + 1].min(hi);
+            if end <= start {
+                break;
+            }
+            curve.bezier_piece_in_span(knots, span, start, end, &mut out);
+            let mut min = [f64::INFINITY; 3];
+            let mut max = [f64::NEG_INFINITY; 3];
+            for point in &out[..=p] {
+                let projected = project(point);
+                for c in 0..3 {
+                    min[c] = min[c].min(projected[c]);
+                    max[c] = max[c].max(projected[c]);
+                }
+            }
+            points.extend_from_slice(&out[..=p]);
+            let jumps = end < domain.1 && knots.iter().filter(|&&u| u == end).count() > p;
+            pieces.push(PieceBox {
+                lo: start,
+                hi: end,
+                end_parameter: if jumps { float_below(end) } else { end },
+                min,
+                max,
+            });
+            start = end;
+        }
+        let size = bounding_box_diagonal(curve.control_points());
+        // When the range ends where the curve jumps, `s(hi)` starts no piece of the range.
+        let jump_at_end = pieces
+            .last()
+            .filter(|last| last.end_parameter != last.hi)
+            .is_some();
+        Ok(ClosestPointSearch {
+            curve,
+            range: (lo, hi),
+            points,
+            pieces,
+            size,
+            end_point: jump_at_end.then(|| curve.point_unchecked(hi)),
+        })
+    }
+
+    /// The range searched.
+    pub fn range(&self) -> (f64, f64) {
+        self.range
+    }
+
+    /// The closest point of the range to `q` (`z = 0` for a planar curve): the global minimum
+    /// of `|s(u) - q|` (module docs), the smallest parameter among ties within
+    /// [`CLOSEST_POINT_TOLERANCE`].
+    pub fn closest(&self, q: Point) -> ClosestPoint {
+        let p = self.curve.degree();
+        let rational = self.curve.is_rational();
+        let mut search = Search::new(self.size);
+        let coordinates = self.curve.dimension().count();
+        // Every piece's ends first: the range's ends, the corners and both sides of a jump are
+        // among them.
+        let Some(first) = self.points.first() else {
+            // An empty range `lo == hi`: its one point.
+            let point = self.curve.point_unchecked(self.range.0);
+            return ClosestPoint {
+                parameter: self.range.0,
+                point,
+                distance: distance(point, q),
+            };
+        };
+        search.offer(self.range.0, squared_distance(q, project(first)));
+        for (index, piece) in self.pieces.iter().enumerate() {
+            let jumped_to = index > 0 && self.pieces[index - 1].end_parameter != piece.lo;
+            if jumped_to {
+                let start = project(&self.points[index * (p + 1)]);
+                search.offer(piece.lo, squared_distance(q, start));
+            }
+            let end = project(&self.points[index * (p + 1) + p]);
+            search.offer(piece.end_parameter, squared_distance(q, end));
+        }
+        if let Some(end_point) = self.end_point {
+            search.offer(self.range.1, squared_distance(q, end_point));
+        }
+        for (index, piece) in self.pieces.iter().enumerate() {
+            if search.prunes(piece.squared_distance(q, coordinates), piece.lo) {
+                continue;
+            }
+            let bezier = &self.points[index * (p + 1)..(index + 1) * (p + 1)];
+            match (p, rational) {
+                (3, false) => search.piece::<7>(bezier, q, 3, false, coordinates, piece),
+                (3, true) => search.piece::<13>(bezier, q, 3, true, coordinates, piece),
+                _ => search.piece::<{ MAX_RATIO_DEGREE + 1 }>(
+                    bezier,
+                    q,
+                    p,
+                    rational,
+                    coordinates,
+                    piece,
+                ),
+            }
+        }
+        search.finish(self.curve, q, self.range.0)
+    }
+}
+
+/// The largest float below `x` (finite `x`).
+fn float_below(x: f64) -> f64 {
+    if x == 0.0 {
+        -f64::from_bits(1)
+    } else if x > 0.0 {
+        f64::from_bits(x.to_bits() - 1)
+    } else {
+        f64::from_bits(x.to_bits() + 1)
+    }
+}
+
+/// The Euclidean point of a homogeneous one.
+fn project(point: &[f64; 4]) -> Point {
+    [
+        point[0] / point[3],
+        point[1] / point[3],
+        point[2] / point[3],
+    ]
+}
+
+fn squared_distance(a: Point, b: Point) -> f64 {
+    let d = distance(a, b);
+    d * d
+}
+
+/// The diagonal of the points' bounding box.
+fn bounding_box_diagonal(points: &[Point]) -> f64 {
+    let mut min = [f64::INFINITY; 3];
+    let mut max = [f64::NEG_INFINITY; 3];
+    for point in points {
+        for c in 0..3 {
+            min[c] = min[c].min(point[c]);
+            max[c] = max[c].max(point[c]);
+        }
+    }
+    distance(min, max)
+}
+
+/// A part `[s0, s1]` of a piece: Bernstein coefficients (the first of `LEN` slots) of `N`,
+/// `D` (rational only) and `M` on it.
+#[derive(Clone, Copy)]
+struct Part<const LEN: usize> {
+    numerator: [f64; LEN],
+    denominator: [f64; LEN],
+    slope: [f64; LEN],
+    s0: f64,
+    s1: f64,
+    depth: u32,
+}
+
+/// The state of one query's search.
+struct Search {
+    size: f64,
+    /// The least squared distance offered so far.
+    best: f64,
+    /// The smallest parameter among the kept candidates.
+    best_parameter: f64,
+    /// Parameters whose squared distance lay within the slack of the best when offered.
+    candidates: Vec<(f64, f64)>,
+    halvings: usize,
+}
+
+impl Search {
+    fn new(size: f64) -> Self {
+        Search {
+            size,
+            best: f64::INFINITY,
+            best_parameter: f64::INFINITY,
+            candidates: Vec::with_capacity(8),
+            halvings: 0,
+        }
+    }
+
+    /// How far above the best squared distance a value still counts: the tie tolerance on
+    /// the distance, plus the rounding allowance.
+    fn slack(&self) -> f64 {
+        let best = self.best.sqrt();
+        let tolerance = CLOSEST_POINT_TOLERANCE * (self.size + best);
+        let scale = self.size + best;
+        2.0 * best * tolerance + tolerance * tolerance + SQUARED_NOISE * scale * scale
+    }
+
+    /// Records the squared distance `value` at parameter `u`.
+    fn offer(&mut self, u: f64, value: f64) {
+        if value.is_nan() {
+            return;
+        }
+        if value < self.best {
+            self.best = value;
+            let limit = self.best + self.slack();
+            self.candidates.retain(|&(_, v)| v <= limit);
+            self.best_parameter = self
+                .candidates
+                .iter()
+                .fold(f64::INFINITY, |m, &(u, _)| m.min(u));
+        }
+        if value <= self.best + self.slack() {
+            self.candidates.push((u, value));
+            self.best_parameter = self.best_parameter.min(u);
+        }
+    }
+
+    /// Whether a part starting at parameter `from` with squared-distance lower bound `bound`
+    /// can be left out: it cannot come within the slack of the best, or it cannot beat the
+    /// best and lies right of a tie already found (ties go to the smallest parameter).
+    fn prunes(&self, bound: f64, from: f64) -> bool {
+        let slack = self.slack();
+        bound > self.best + slack
+            || (bound >= self.best - 0.5 * slack && from >= self.best_parameter)
+    }
+
+    /// Searches one piece (module docs); `bezier` holds its `p + 1` homogeneous points.
+    #[inline(always)]
+    fn piece<const LEN: usize>(
+        &mut self,
+        bezier: &[[f64; 4]],
+        q: Point,
+        p: usize,
+        rational: bool,
+        coordinates: usize,
+        piece: &PieceBox,
+    ) {
+        let len = 2 * p + 1;
+        let slope_len = if rational { 4 * p } else { 2 * p };
+        let mut part = Part::<LEN> {
+            numerator: [0.0; LEN],
+            denominator: [0.0; LEN],
+            slope: [0.0; LEN],
+            s0: 0.0,
+            s1: 1.0,
+            depth: 0,
+        };
+        squared_distance_coefficients(bezier, q, p, rational, coordinates, &mut part);
+        let parameter = |s: f64| (piece.lo + s * (piece.hi - piece.lo)).min(piece.end_parameter);
+        let value = |part: &Part<LEN>, index: usize| {
+            if rational {
+                part.numerator[index] / part.denominator[index]
+            } else {
+                part.numerator[index]
+            }
+        };
+        let mut stack: Vec<Part<LEN>> = Vec::with_capacity(MAX_DEPTH as usize + 1);
+        stack.push(part);
+        while let Some(part) = stack.pop() {
+            let bound = (0..len)
+                .map(|k| value(&part, k))
+                .fold(f64::INFINITY, f64::min);
+            if self.prunes(bound, parameter(part.s0)) {
+                continue;
+            }
+            let slope = &part.slope[..slope_len];
+            let first_sign = slope.iter().copied().find(|&m| m != 0.0).unwrap_or(0.0);
+            if !slope.iter().any(|&m| m < 0.0) || !slope.iter().any(|&m| m > 0.0) {
+                // Monotone: the minimum is at an end, offered already.
+                continue;
+            }
+            if first_sign < 0.0 && sign_changes(slope) == 1 {
+                // One interior minimum: where M crosses zero upwards.
+                let root = upward_root(slope);
+                let mut scratch = [0.0; LEN];
+                let (n, _) = value_and_slope(&part.numerator[..len], root, &mut scratch);
+                let squared = if rational {
+                    n / value_and_slope(&part.denominator[..len], root, &mut scratch).0
+                } else {
+                    n
+                };
+                let s = part.s0 + root * (part.s1 - part.s0);
+                self.offer(parameter(s), squared);
+                continue;
+            }
+            if part.depth >= MAX_DEPTH || self.halvings >= MAX_HALVINGS {
+                continue;
+            }
+            self.halvings += 1;
+            let (mut left, mut right) = (part, part);
+            let middle = 0.5 * (part.s0 + part.s1);
+            left.s1 = middle;
+            right.s0 = middle;
+            left.depth += 1;
+            right.depth += 1;
+            halve(
+                &part.numerator[..len],
+                &mut left.numerator[..len],
+                &mut right.numerator[..len],
+            );
+            if rational {
+                halve(
+                    &part.denominator[..len],
+                    &mut left.denominator[..len],
+                    &mut right.denominator[..len],
+                );
+            }
+            halve(
+                &part.slope[..slope_len],
+                &mut left.slope[..slope_len],
+                &mut right.slope[..slope_len],
+            );
+            self.offer(parameter(middle), value(&left, len - 1));
+            stack.push(right);
+            stack.push(left);
+        }
+    }
+
+    /// The answer: the candidates measured with the curve evaluator, the smallest parameter
+    /// among those within the tolerance of the least distance.
+    fn finish(&self, curve: &Curve, q: Point, fallback: f64) -> ClosestPoint {
+        let limit = self.best + self.slack();
+        let mut measured: Vec<ClosestPoint> = self
+            .candidates
+            .iter()
+            .filter(|&&(_, v)| v <= limit)
+            .map(|&(u, _)| {
+                let point = curve.point_unchecked(u);
+                ClosestPoint {
+                    parameter: u,
+                    point,
+                    distance: distance(point, q),
+                }
+            })
+            .collect();
+        if measured.is_empty() {
+            let point = curve.point_unchecked(fallback);
+            measured.push(ClosestPoint {
+                parameter: fallback,
+                point,
+                distance: distance(point, q),
+            });
+        }
+        let least = measured
+            .iter()
+            .map(|c| c.distance)
+            .fold(f64::INFINITY, f64::min);
+        let tie = least + CLOSEST_POINT_TOLERANCE * (self.size + least);
+        measured
+            .into_iter()
+            .filter(|c| c.distance <= tie)
+            .min_by(|a, b| a.parameter.total_cmp(&b.parameter))
+            .unwrap_or(ClosestPoint {
+                parameter: fallback,
+                point: q,
+                distance: 0.0,
+            })
+    }
+}
+
+/// Fills `part` with the Bernstein coefficients of `N = |X - q W|²`, of `D = W²` (rational)
+/// and of `M` (`N' D - N D'`, or `N'` up to the factor `2p` when polynomial) for the piece
+/// with homogeneous Bézier points `bezier`.
+///
+/// Products are formed in the scaled basis `s^k (1 - s)^(d-k)` (coefficients `C(d, k)` times
+/// the Bernstein ones), where a product is a plain convolution.
+#[inline(always)]
+fn squared_distance_coefficients<const LEN: usize>(
+    bezier: &[[f64; 4]],
+    q: Point,
+    p: usize,
+    rational: bool,
+    coordinates: usize,
+    part: &mut Part<LEN>,
+) {
+    let len = 2 * p + 1;
+    let numerator = &mut part.numerator[..len];
+    let mut gap = [0.0; LEN];
+    for c in 0..coordinates {
+        for (i, point) in bezier.iter().enumerate().take(p + 1) {
+            gap[i] = BINOMIAL[p][i] * (point[c] - q[c] * point[3]);
+        }
+        convolve(&gap[..=p], &gap[..=p], numerator, 1.0);
+    }
+    unscale(numerator);
+    if !rational {
+        for k in 0..2 * p {
+            part.slope[k] = part.numerator[k + 1] - part.numerator[k];
+        }
+        return;
+    }
+    let mut weights = [0.0; LEN];
+    for (i, point) in bezier.iter().enumerate().take(p + 1) {
+        weights[i] = BINOMIAL[p][i] * point[3];
+    }
+    let denominator = &mut part.denominator[..len];
+    convolve(&weights[..=p], &weights[..=p], denominator, 1.0);
+    unscale(denominator);
+    // Derivatives (degree 2p - 1) scaled by C(2p - 1, k), the values by C(2p, k); the
+    // product has degree 4p - 1.
+    let degree = 2 * p;
+    let mut numerator_slope = [0.0; LEN];
+    let mut denominator_slope = [0.0; LEN];
+    let mut numerator_scaled = [0.0; LEN];
+    let mut denominator_scaled = [0.0; LEN];
+    for k in 0..degree {
+        let scale = degree as f64 * BINOMIAL[degree - 1][k];
+        numerator_slope[k] = scale * (part.numerator[k + 1] - part.numerator[k]);
+        denominator_slope[k] = scale * (part.denominator[k + 1] - part.denominator[k]);
+    }
+    for k in 0..=degree {
+        numerator_scaled[k] = BINOMIAL[degree][k] * part.numerator[k];
+        denominator_scaled[k] = BINOMIAL[degree][k] * part.denominator[k];
+    }
+    let slope = &mut part.slope[..2 * degree];
+    convolve(
+        &numerator_slope[..degree],
+        &denominator_scaled[..=degree],
+        slope,
+        1.0,
+    );
+    convolve(
+        &numerator_scaled[..=degree],
+        &denominator_slope[..degree],
+        slope,
+        -1.0,
+    );
+    unscale(slope);
+}
+
+/// Sign changes in a sequence, zeros skipped.
+fn sign_changes(values: &[f64]) -> usize {
+    let mut changes = 0;
+    let mut previous = 0.0;
+    for &v in values {
+        if v != 0.0 {
+            if previous != 0.0 && (v > 0.0) != (previous > 0.0) {
+                changes += 1;
+            }
+            previous = v;
+        }
+    }
+    changes
+}
+
+/// The root in `[0, 1]` of the Bernstein polynomial `coefficients`, which is `<= 0` at 0 and
+/// `>= 0` at 1 with a single sign change: Newton's method, falling back to bisection whenever
+/// a step leaves the bracket.
+fn upward_root(coefficients: &[f64]) -> f64 {
+    let mut scratch = [0.0; 4 * MAX_DEGREE + 1];
+    let (mut below, mut above) = (0.0f64, 1.0f64);
+    let mut s = 0.5;
+    for _ in 0..MAX_ROOT_ITERATIONS {
+        let (value, slope) = value_and_slope(coefficients, s, &mut scratch);
+        if value == 0.0 {
+            return s;
+        }
+        if value < 0.0 {
+            below = s;
+        } else {
+            above = s;
+        }
+        if above - below <= 2.0 * f64::EPSILON {
+            break;
+        }
+        let newton = s - value / slope;
+        s = if slope > 0.0 && newton > below && newton < above {
+            newton
+        } else {
+            0.5 * (below + above)
+        };
+        if s == below || s == above {
+            break;
+        }
+    }
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::spline::CurveLimits;
+
+    fn curve(degree: usize, points: &[&[f64]], knots: &[f64], weights: Option<&[f64]>) -> Curve {
+        let points: Vec<Vec<f64>> = points.iter().map(|p| p.to_vec()).collect();
+        Curve::new(degree, &points, knots, weights, &CurveLimits::default()).unwrap()
+    }
+
+    #[test]
+    fn sign_changes_skip_zeros() {
+        assert_eq!(sign_changes(&[-1.0, 0.0, 2.0, 3.0]), 1);
+        assert_eq!(sign_changes(&[1.0, -1.0, 0.0, 1.0]), 2);
+        assert_eq!(sign_changes(&[0.0, 0.0]), 0);
+    }
+
+    #[test]
+    fn upward_root_of_a_line_and_a_cubic() {
+        // 2s - 1 in Bernstein form: coefficients -1, 1.
+        assert!((upward_root(&[-1.0, 1.0]) - 0.5).abs() < 1e-15);
+        // (s - 0.3)³ = Σ c_k B_k with blossoms c_k = (0 - .3)^(3-k) (1 - .3)^k, the root 0.3.
+        let c: Vec<f64> = (0..4)
+            .map(|k| (-0.3f64).powi(3 - k) * 0.7f64.powi(k))
+            .collect();
+        assert!((upward_root(&c) - 0.3).abs() < 1e-5);
+    }
+
+    #[test]
+    fn a_quarter_circle_from_its_centre_ties_to_the_range_start() {
+        let w = std::f64::consts::FRAC_1_SQRT_2;
+        let arc = curve(
+            2,
+            &[&[1.0, 0.0], &[1.0, 1.0], &[0.0, 1.0]],
+            &[0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
+            Some(&[1.0, w, 1.0]),
+        );
+        let search = ClosestPointSearch::new(&arc, None).unwrap();
+        let found = search.closest([0.0, 0.0, 0.0]);
+        assert_eq!(found.parameter, 0.0);
+        assert!((found.distance - 1.0).abs() < 1e-14);
+        let inner = ClosestPointSearch::new(&arc, Some((0.25, 0.75))).unwrap();
+        assert_eq!(inner.closest([0.0, 0.0, 0.0]).parameter, 0.25);
+    }
+}
