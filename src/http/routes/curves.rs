@@ -43,12 +43,14 @@ pub struct EvaluateRequest {
     pub samples: Option<usize>,
     /// A distance `τ > 0`: answer increasing parameters, both ends and every knot included,
     /// whose points make a polyline within `τ` of the curve everywhere (Hausdorff distance,
-    /// in the curve's coordinates). Certified by the convex-hull bound on the Bézier pieces,
-    /// split by de Casteljau (into parts of equal parameter length) until every control point is
-    /// within `τ` of its piece's chord (for rational pieces the projected control points:
-    /// positive weights keep the curve in their hull) or, for non-rational pieces, until
-    /// `(1 - 2^(1-p)) max_i |B_i - L(i/p)|` is (`L` the chord's linear parametrisation, by
-    /// linear precision of the Bernstein basis); deterministic. Refused (422) when more than the configured
+    /// in the curve's coordinates). Certified on the Bézier pieces: a piece is a convex
+    /// combination of its control points `P_i` (projected, for rational curves: the weights
+    /// are positive), so its distance to the chord `[P_0, P_p]` is at most
+    /// `D · a h / (a h + c (1 - h))`, `h = 1 - 2^(1-p)`, `D` the largest distance of a control
+    /// point to the chord, `a` the largest interior weight, `c` the smaller end weight (at
+    /// most `D`, the convex-hull bound; `h D` without weights). A piece whose bound exceeds `τ`
+    /// is split by de Casteljau into parts of equal parameter length, recursively;
+    /// deterministic. Refused (422) when more than the configured
     /// `max_parameters` points would be needed, when `τ` is below `1e-9` times the largest
     /// control-point coordinate magnitude (double precision cannot certify it), or when the
     /// curve jumps at a knot of multiplicity `degree + 1`. Exactly one of `parameters`,
