@@ -13,6 +13,7 @@ pub mod pointer;
 pub mod routes;
 pub mod server;
 pub mod state;
+pub mod svg_path;
 pub mod wire;
 
 use std::sync::Arc;
@@ -34,7 +35,7 @@ use utoipa_axum::routes;
 
 use crate::config::Config;
 use error::{FieldError, PROBLEM_JSON, Problem};
-use routes::{closest, curves, ops, shape};
+use routes::{closest, curves, ops, shape, toolkit};
 pub use server::{Server, shutdown_signal};
 pub use state::{AppState, Readiness};
 
@@ -93,6 +94,8 @@ fn v1_routes() -> OpenApiRouter<AppState> {
         .routes(routes!(curves::evaluate))
         .routes(routes!(curves::envelope))
         .routes(routes!(closest::closest_point))
+        .routes(routes!(toolkit::insert_knots))
+        .routes(routes!(toolkit::bezier))
         .routes(routes!(shape::membership))
         .routes(routes!(shape::regions))
         .routes(routes!(shape::solve))
@@ -156,7 +159,7 @@ pub fn openapi_json() -> String {
             length; answers use the caller's convention."
     ),
     tags(
-        (name = "curves", description = "Curve evaluation and the knot-moving envelope"),
+        (name = "curves", description = "Curve evaluation, polylines, knot insertion, Bézier pieces and the knot-moving envelope"),
         (name = "shape", description = "Shape modification of cubic curves by knot pairs Ω1–Ω6 (Tornai; Juhász & Hoffmann)"),
         (name = "operations", description = "Probes, metrics and this document; never need the API key"),
     ),
@@ -256,6 +259,6 @@ mod tests {
     fn the_document_names_every_route() {
         let document = openapi();
         let paths: Vec<&String> = document.paths.paths.keys().collect();
-        assert_eq!(paths.len(), 10, "{paths:?}");
+        assert_eq!(paths.len(), 12, "{paths:?}");
     }
 }

@@ -72,11 +72,12 @@ pub struct ShapeQuery<'a> {
 }
 
 impl<'a> ShapeQuery<'a> {
-    /// All sides, all six pairs, domain kept: the API's defaults.
+    /// All sides, all six pairs, domain kept: the API's defaults. A `parameter` just outside
+    /// the domain is snapped onto its end ([`Curve::snap_to_domain`]).
     pub fn new(curve: &'a Curve, parameter: f64) -> Self {
         ShapeQuery {
             curve,
-            parameter,
+            parameter: curve.snap_to_domain(parameter).unwrap_or(parameter),
             side: SideChoice::Both,
             pairs: &KnotPair::ALL,
             keep_domain: true,

@@ -124,9 +124,9 @@ impl PieceBox {
     /// The squared distance from `q` to the box: a lower bound for the piece.
     fn squared_distance(&self, q: Point, coordinates: usize) -> f64 {
         let mut sum = 0.0;
-        for c in 0..coordinates {
-            let below = self.min[c] - q[c];
-            let above = q[c] - self.max[c];
+        for ((&low, &high), &value) in self.min.iter().zip(&self.max).zip(&q).take(coordinates) {
+            let below = low - value;
+            let above = value - high;
             let gap = if below > 0.0 {
                 below
             } else if above > 0.0 {
@@ -141,22 +141,26 @@ impl PieceBox {
 }
 
 impl<'c> ClosestPointSearch<'c> {
-    /// Cuts `range` (default: the whole domain) of `curve` into Bézier pieces.
+    /// Cuts `range` (default: the whole domain) of `curve` into Bézier pieces. An end of the
+    /// range just outside the domain is taken as the domain's end ([`Curve::snap_to_domain`]).
     pub fn new(curve: &'c Curve, range: Option<(f64, f64)>) -> Result<Self, ClosestPointError> {
         let domain = curve.domain();
         let (lo, hi) = range.unwrap_or(domain);
-        for (index, value) in [lo, hi].into_iter().enumerate() {
+        // Ends just outside the domain are its ends (`Curve::snap_to_domain`).
+        let mut ends = [lo, hi];
+        for (index, value) in ends.iter_mut().enumerate() {
             if !value.is_finite() {
                 return Err(ClosestPointError::NonFiniteRange { index });
             }
-            if !curve.contains_parameter(value) {
-                return Err(ClosestPointError::RangeOutsideDomain {
+            *value = curve
+                .snap_to_domain(*value)
+                .ok_or(ClosestPointError::RangeOutsideDomain {
                     index,
-                    value,
+                    value: *value,
                     domain,
-                });
-            }
+                })?;
         }
+        let [lo, hi] = ends;
         if lo > hi {
             return Err(ClosestPointError::ReversedRange { lo, hi });
         }

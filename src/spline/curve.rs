@@ -3,6 +3,15 @@
 use super::basis::{MAX_DEGREE, basis_functions, find_span};
 use super::vector::Point;
 
+/// A parameter outside the domain by at most this fraction of the domain's length is taken as
+/// the nearer end ([`Curve::snap_to_domain`]).
+pub const DOMAIN_END_SLACK: f64 = 1e-12;
+
+/// A parameter outside the domain by at most this many units of roundoff of the ends'
+/// magnitude (`ε · max(|lo|, |hi|)`) is taken as the nearer end, however short the domain
+/// ([`Curve::snap_to_domain`]).
+pub const DOMAIN_END_ULPS: f64 = 4.0;
+
 /// How the caller wrote the knot vector; answers use the same convention.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum KnotConvention {
@@ -456,6 +465,33 @@ impl Curve {
         t >= lo && t <= hi
     }
 
+    /// `t` itself when it lies in the domain `[lo, hi]`; the nearer end when it lies outside by
+    /// at most [`DOMAIN_END_SLACK`] `· (hi - lo)` or [`DOMAIN_END_ULPS`] units of roundoff
+    /// `ε · max(|lo|, |hi|)`, whichever is larger; `None` when it lies farther out or is not
+    /// finite.
+    ///
+    /// A client that computes a parameter in floating point (Greville abscissae, a sum of
+    /// steps) lands a few units of roundoff past an end; every endpoint that takes parameters
+    /// clamps such values instead of refusing them.
+    pub fn snap_to_domain(&self, t: f64) -> Option<f64> {
+        if !t.is_finite() {
+            return None;
+        }
+        let (lo, hi) = self.domain();
+        if (lo..=hi).contains(&t) {
+            return Some(t);
+        }
+        let roundoff = DOMAIN_END_ULPS * f64::EPSILON * lo.abs().max(hi.abs());
+        let slack = (DOMAIN_END_SLACK * (hi - lo)).max(roundoff);
+        if t < lo && lo - t <= slack {
+            Some(lo)
+        } else if t > hi && t - hi <= slack {
+            Some(hi)
+        } else {
+            None
+        }
+    }
+
     /// The span `m` with `u_m <= t < u_{m+1}` (last non-empty span at the right end).
     pub fn span(&self, t: f64) -> usize {
         find_span(&self.knots, self.degree, t)
@@ -735,6 +771,27 @@ mod tests {
             )
             .is_ok()
         );
+    }
+
+    #[test]
+    fn parameters_just_outside_the_domain_snap_onto_its_ends() {
+        let curve = build(2, &points(5), &FULL, None).unwrap();
+        let slack = DOMAIN_END_SLACK * 3.0;
+        assert_eq!(curve.snap_to_domain(1.5), Some(1.5));
+        assert_eq!(curve.snap_to_domain(0.0), Some(0.0));
+        assert_eq!(curve.snap_to_domain(-0.5 * slack), Some(0.0));
+        assert_eq!(curve.snap_to_domain(3.0 + 0.9 * slack), Some(3.0));
+        assert_eq!(curve.snap_to_domain(-2.0 * slack), None);
+        assert_eq!(curve.snap_to_domain(3.0 + 2.0 * slack), None);
+        assert_eq!(curve.snap_to_domain(f64::NAN), None);
+        assert_eq!(curve.snap_to_domain(f64::INFINITY), None);
+        // A short domain far from 0: a few units of roundoff still snap.
+        let far: Vec<f64> = FULL.iter().map(|u| 1e6 + 1e-9 * u).collect();
+        let curve = build(2, &points(5), &far, None).unwrap();
+        let (_, hi) = curve.domain();
+        let next_up = f64::from_bits(hi.to_bits() + 2);
+        assert_eq!(curve.snap_to_domain(next_up), Some(hi));
+        assert_eq!(curve.snap_to_domain(hi + 1e-6), None);
     }
 
     #[test]

@@ -1,12 +1,15 @@
 //! Spline-core conformance tests: evaluation (single point and batch), derivatives and the
-//! envelope of `knotshape::spline`, checked against an independent textbook implementation.
+//! envelope, knot insertion, Bézier pieces and the certified polyline of `knotshape::spline`,
+//! checked against an independent textbook implementation.
 #![allow(clippy::unwrap_used)]
 
 mod closest;
+mod editing;
 mod envelope;
 mod evaluation;
 mod generators;
 mod reference;
+mod toolkit;
 
 use proptest::test_runner::Config;
 

@@ -1,4 +1,5 @@
-//! `POST /v1/curves/evaluate` and `POST /v1/curves/envelope`.
+//! `POST /v1/curves/evaluate` (at given parameters, uniform samples or a certified polyline)
+//! and `POST /v1/curves/envelope`.
 
 use axum::Extension;
 use axum::extract::State;
@@ -29,15 +30,34 @@ const MAX_LISTED_PARAMETER_ERRORS: usize = 20;
 pub struct EvaluateRequest {
     /// The curve.
     pub curve: CurveBody,
-    /// Parameters inside the domain, in any order. Exactly one of `parameters` and `samples`.
+    /// Parameters inside the domain, in any order. One outside it by at most `1e-12` of the
+    /// domain's length (or 4 units of roundoff of the ends) is taken as the nearer end, and
+    /// answered as that end. Exactly one of `parameters`, `samples` and `tolerance`.
     #[serde(default)]
     #[schema(example = json!([0, 0.25, 0.5, 1]))]
     pub parameters: Option<Vec<f64>>,
     /// Number of parameters (>= 2) spread uniformly over the whole domain, both ends included.
-    /// Exactly one of `parameters` and `samples`.
+    /// Exactly one of `parameters`, `samples` and `tolerance`.
     #[serde(default)]
     #[schema(minimum = 2, example = 11)]
     pub samples: Option<usize>,
+    /// A distance `τ > 0`: answer increasing parameters, both ends and every knot included,
+    /// whose points make a polyline within `τ` of the curve everywhere (Hausdorff distance,
+    /// in the curve's coordinates). Certified on the Bézier pieces: a piece is a convex
+    /// combination of its control points `P_i` (projected, for rational curves: the weights
+    /// are positive), so its distance to the chord `[P_0, P_p]` is at most
+    /// `D · a h / (a h + c (1 - h))`, `h = 1 - 2^(1-p)`, `D` the largest distance of a control
+    /// point to the chord, `a` the largest interior weight, `c` the smaller end weight (at
+    /// most `D`, the convex-hull bound; `h D` without weights). A piece whose bound exceeds `τ`
+    /// is split by de Casteljau into parts of equal parameter length, recursively;
+    /// deterministic. Refused (422) when more than the configured
+    /// `max_parameters` points would be needed, when `τ` is below `1e-9` times the largest
+    /// control-point coordinate magnitude (double precision cannot certify it), or when the
+    /// curve jumps at a knot of multiplicity `degree + 1`. Exactly one of `parameters`,
+    /// `samples` and `tolerance`.
+    #[serde(default)]
+    #[schema(exclusive_minimum = 0, example = 0.01)]
+    pub tolerance: Option<f64>,
     /// Highest derivative order to return (0: points only).
     #[serde(default)]
     #[schema(minimum = 0, example = 1)]
@@ -55,7 +75,8 @@ pub struct EvaluateRequest {
 pub struct EvaluateResponse {
     /// The parameter domain `[lo, hi]`.
     pub domain: [f64; 2],
-    /// The parameters evaluated (the given ones, or the uniform samples).
+    /// The parameters evaluated: the given ones (those just outside the domain as its ends),
+    /// the uniform samples, or the polyline's vertices (increasing).
     pub parameters: Vec<f64>,
     /// `points[i]` is the curve point at `parameters[i]`.
     #[schema(value_type = Vec<Vec<f64>>)]
@@ -69,8 +90,9 @@ pub struct EvaluateResponse {
 
 /// Evaluate a curve.
 ///
-/// Points, and derivatives up to `derivatives`, at the given `parameters` or at `samples`
-/// uniform parameters over the whole domain.
+/// Points, and derivatives up to `derivatives`, at the given `parameters`, at `samples`
+/// uniform parameters over the whole domain, or at the vertices of a polyline within
+/// `tolerance` of the curve.
 #[utoipa::path(
     post,
     path = "/v1/curves/evaluate",
@@ -89,10 +111,15 @@ pub async fn evaluate(
     ApiJson(request): ApiJson<EvaluateRequest>,
 ) -> Result<ApiJson<EvaluateResponse>, ApiError> {
     let (limits, curve_limits) = (state.limits, state.curve_limits);
-    let points = request
-        .parameters
-        .as_ref()
-        .map_or(request.samples.unwrap_or(0), Vec::len);
+    let points = match (&request.parameters, request.samples, request.tolerance) {
+        (Some(parameters), _, _) => parameters.len(),
+        (None, Some(samples), _) => samples,
+        // A polyline may take up to the limit, each point a split of degree² blends.
+        (None, None, Some(_)) => limits
+            .max_parameters
+            .saturating_mul(request.curve.degree.saturating_add(1)),
+        (None, None, None) => 0,
+    };
     let work = request.curve.control_points.len()
         + points.saturating_mul(request.derivatives.saturating_add(1));
     compute(admission, work, move || {
@@ -106,6 +133,7 @@ pub async fn evaluate(
 enum ParameterSource<'a> {
     Given(&'a [f64]),
     Uniform(usize),
+    Polyline(f64),
 }
 
 fn evaluate_request(
@@ -122,22 +150,37 @@ fn evaluate_request(
         }
         Err(other) => return Err(other),
     };
-    let source = match (&request.parameters, request.samples) {
-        (Some(_), Some(_)) => {
+    let source = match (&request.parameters, request.samples, request.tolerance) {
+        (Some(_), _, Some(_)) | (_, Some(_), Some(_)) => {
+            errors.push(FieldError::new(
+                "/tolerance",
+                "give one of `parameters`, `samples` and `tolerance`, not several",
+            ));
+            None
+        }
+        (None, None, Some(tolerance)) if tolerance.is_nan() || tolerance <= 0.0 => {
+            errors.push(FieldError::new(
+                "/tolerance",
+                "`tolerance` must be greater than 0",
+            ));
+            None
+        }
+        (None, None, Some(tolerance)) => Some(ParameterSource::Polyline(tolerance)),
+        (Some(_), Some(_), None) => {
             errors.push(FieldError::new(
                 "/samples",
                 "give either `parameters` or `samples`, not both",
             ));
             None
         }
-        (None, None) => {
+        (None, None, None) => {
             errors.push(FieldError::new(
                 "",
-                "give either `parameters` (a list) or `samples` (a count)",
+                "give one of `parameters` (a list), `samples` (a count) or `tolerance` (a distance)",
             ));
             None
         }
-        (Some(parameters), None) if parameters.len() > limits.max_parameters => {
+        (Some(parameters), None, None) if parameters.len() > limits.max_parameters => {
             errors.push(FieldError::new(
                 "/parameters",
                 format!(
@@ -148,12 +191,12 @@ fn evaluate_request(
             ));
             None
         }
-        (Some(parameters), None) => Some(ParameterSource::Given(parameters)),
-        (None, Some(samples)) if samples < 2 => {
+        (Some(parameters), None, None) => Some(ParameterSource::Given(parameters)),
+        (None, Some(samples), None) if samples < 2 => {
             errors.push(FieldError::new("/samples", "`samples` must be at least 2"));
             None
         }
-        (None, Some(samples)) if samples > limits.max_parameters => {
+        (None, Some(samples), None) if samples > limits.max_parameters => {
             errors.push(FieldError::new(
                 "/samples",
                 format!(
@@ -163,7 +206,7 @@ fn evaluate_request(
             ));
             None
         }
-        (None, Some(samples)) => Some(ParameterSource::Uniform(samples)),
+        (None, Some(samples), None) => Some(ParameterSource::Uniform(samples)),
     };
     if request.derivatives > limits.max_derivative_order {
         errors.push(FieldError::new(
@@ -178,22 +221,29 @@ fn evaluate_request(
         return Err(ApiError::Invalid(errors));
     };
     let parameters: Vec<f64> = match source {
-        ParameterSource::Given(parameters) => {
-            check_in_domain(&curve, parameters)?;
-            parameters.to_vec()
-        }
+        ParameterSource::Given(parameters) => snapped_into_domain(&curve, parameters)?,
         ParameterSource::Uniform(count) => curve.uniform_parameters(count).collect(),
+        ParameterSource::Polyline(tolerance) => curve
+            .tessellate(tolerance, limits.max_parameters)
+            .map_err(|error| ApiError::invalid("/tolerance", error.to_string()))?,
     };
     evaluate_at(&curve, parameters, request.derivatives)
 }
 
-/// 422 listing (up to a bound) every parameter outside the domain.
-fn check_in_domain(curve: &Curve, parameters: &[f64]) -> Result<(), ApiError> {
+/// The parameters with those just outside the domain snapped onto its ends
+/// ([`Curve::snap_to_domain`]); a 422 listing (up to a bound) every parameter farther out.
+fn snapped_into_domain(curve: &Curve, parameters: &[f64]) -> Result<Vec<f64>, ApiError> {
+    let snapped: Vec<Option<f64>> = parameters
+        .iter()
+        .map(|&t| curve.snap_to_domain(t))
+        .collect();
     let (lo, hi) = curve.domain();
     let errors: Vec<FieldError> = parameters
         .iter()
+        .zip(&snapped)
         .enumerate()
-        .filter(|(_, t)| !curve.contains_parameter(**t))
+        .filter(|(_, (_, snapped))| snapped.is_none())
+        .map(|(index, (t, _))| (index, t))
         .take(MAX_LISTED_PARAMETER_ERRORS)
         .map(|(index, t)| {
             FieldError::new(
@@ -203,7 +253,7 @@ fn check_in_domain(curve: &Curve, parameters: &[f64]) -> Result<(), ApiError> {
         })
         .collect();
     if errors.is_empty() {
-        Ok(())
+        Ok(snapped.into_iter().flatten().collect())
     } else {
         Err(ApiError::Invalid(errors))
     }

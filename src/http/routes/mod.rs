@@ -4,6 +4,7 @@ pub mod closest;
 pub mod curves;
 pub mod ops;
 pub mod shape;
+pub mod toolkit;
 
 use axum::Extension;
 

@@ -160,7 +160,8 @@ fn keep_domain_default() -> bool {
 pub struct ShapeRequest {
     /// A cubic curve (degree 3).
     pub curve: CurveBody,
-    /// The picked parameter `t`, inside the domain.
+    /// The picked parameter `t`, inside the domain; one outside it by at most `1e-12` of the
+    /// domain's length (or 4 units of roundoff of the ends) is taken as the nearer end.
     #[schema(example = 0.42)]
     pub parameter: f64,
     /// The target point `p` (same dimension as the control points).
@@ -202,7 +203,8 @@ pub struct ShapeRequest {
 pub struct RegionsRequest {
     /// A cubic curve (degree 3).
     pub curve: CurveBody,
-    /// The picked parameter `t`, inside the domain.
+    /// The picked parameter `t`, inside the domain; one outside it by at most `1e-12` of the
+    /// domain's length (or 4 units of roundoff of the ends) is taken as the nearer end.
     #[schema(example = 0.42)]
     pub parameter: f64,
     /// Which knot next to `t` moves to `t` (default `both`).
@@ -718,7 +720,8 @@ impl ParsedShape {
     fn query(&self, parameter: f64, side: SideRequest, keep_domain: bool) -> ShapeQuery<'_> {
         ShapeQuery {
             curve: &self.curve,
-            parameter,
+            // Just outside the domain: onto its end; farther out the query's check refuses it.
+            parameter: self.curve.snap_to_domain(parameter).unwrap_or(parameter),
             side: side.into(),
             pairs: &self.pairs,
             keep_domain,

@@ -20,8 +20,9 @@ pub struct ClosestPointRequest {
     /// 1 to `max_parameters` query points, each with the curve's number of coordinates.
     #[schema(example = json!([[2, 3], [6, 0]]))]
     pub points: Vec<Vec<f64>>,
-    /// The part `[lo, hi]` of the domain to search (`lo <= hi`, both inside the domain);
-    /// default the whole domain.
+    /// The part `[lo, hi]` of the domain to search (`lo <= hi`, both inside the domain; an
+    /// end outside it by at most `1e-12` of its length, or 4 units of roundoff of the ends,
+    /// is taken as the domain's end); default the whole domain.
     #[serde(default)]
     #[schema(example = json!([0, 1]))]
     pub range: Option<[f64; 2]>,
