@@ -3,3 +3,5 @@
 
 pub mod closest;
 pub mod methods;
+pub mod shape_answer;
+pub mod shape_request;
