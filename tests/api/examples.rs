@@ -47,7 +47,10 @@ fn check_sensible(path: &str, request: &Value, body: &Value) {
             }
         }
         "/v1/shape/solve" if request["nearest"] == true => {
-            assert_eq!(body["reachable"], false, "the nearest example's target is unreachable");
+            assert_eq!(
+                body["reachable"], false,
+                "the nearest example's target is unreachable"
+            );
             let nearest = &body["nearest"];
             assert!(nearest["distance"].as_f64().unwrap() > 0.0);
             assert!(!nearest["solutions"].as_array().unwrap().is_empty());
@@ -63,7 +66,11 @@ fn check_sensible(path: &str, request: &Value, body: &Value) {
         "/v1/curves/closest-point" => {
             let results = body["results"].as_array().unwrap();
             assert_eq!(results.len(), request["points"].as_array().unwrap().len());
-            assert!(results.iter().all(|r| r["distance"].as_f64().unwrap() >= 0.0));
+            assert!(
+                results
+                    .iter()
+                    .all(|r| r["distance"].as_f64().unwrap() >= 0.0)
+            );
         }
         "/v1/curves/insert-knots" => {
             let before = request["curve"]["control_points"].as_array().unwrap().len();

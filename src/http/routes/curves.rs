@@ -74,14 +74,9 @@ fn evaluate_request(
     curve_limits: &CurveLimits,
 ) -> Result<EvaluateResponse, ApiError> {
     let mut errors = Vec::new();
-    let curve = match request.curve.parse(curve_limits, "/curve") {
-        Ok(curve) => Some(curve),
-        Err(ApiError::Invalid(curve_errors)) => {
-            errors.extend(curve_errors);
-            None
-        }
-        Err(other) => return Err(other),
-    };
+    let curve = request
+        .curve
+        .parse_collecting(curve_limits, "/curve", &mut errors);
     let source = match (&request.parameters, request.samples, request.tolerance) {
         (Some(_), _, Some(_)) | (_, Some(_), Some(_)) => {
             errors.push(FieldError::new(

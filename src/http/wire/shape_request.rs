@@ -237,14 +237,7 @@ impl ParsedShape {
             ));
         }
         let mut errors = Vec::new();
-        let parsed_curve = match curve.parse(curve_limits, "/curve") {
-            Ok(parsed) => Some(parsed),
-            Err(ApiError::Invalid(curve_errors)) => {
-                errors.extend(curve_errors);
-                None
-            }
-            Err(other) => return Err(other),
-        };
+        let parsed_curve = curve.parse_collecting(curve_limits, "/curve", &mut errors);
         let pairs = match regions {
             None => KnotPair::ALL.to_vec(),
             Some(regions) => {
