@@ -34,6 +34,7 @@ use std::io;
 use std::net::SocketAddr;
 use std::pin::pin;
 use std::sync::Arc;
+use std::task::Poll;
 use std::time::Duration;
 
 use axum::Router;
@@ -132,26 +133,12 @@ impl Server {
             }
         };
         let mut stop_accepting = pin!(stop_accepting);
-        loop {
-            let accepted = tokio::select! {
-                biased;
-                () = &mut stop_accepting => break,
-                accepted = self.listener.accept() => accepted,
-            };
-            let stream = match accepted {
-                Ok((stream, _peer)) => stream,
-                Err(error) if is_connection_error(&error) => continue,
-                Err(error) => {
-                    tracing::error!(%error, "accept failed; pausing");
-                    tokio::time::sleep(ACCEPT_ERROR_BACKOFF).await;
-                    continue;
-                }
-            };
+        let start = |stream: TcpStream| {
             let now = Instant::now();
             let Some(registered) = registry.admit(now) else {
                 // Dropping the stream closes it at once.
                 shared.metrics.record_close(CloseReason::OverCapacity);
-                continue;
+                return;
             };
             tokio::spawn(serve_connection(
                 stream,
@@ -160,6 +147,26 @@ impl Server {
                 now,
                 connection_alive.clone(),
             ));
+        };
+        loop {
+            let accepted = tokio::select! {
+                biased;
+                () = &mut stop_accepting => break,
+                accepted = self.listener.accept() => accepted,
+            };
+            match accepted {
+                Ok((stream, _peer)) => start(stream),
+                Err(error) if is_connection_error(&error) => {}
+                Err(error) => {
+                    tracing::error!(%error, "accept failed; pausing");
+                    tokio::time::sleep(ACCEPT_ERROR_BACKOFF).await;
+                }
+            }
+        }
+        // Connections the kernel has completed but not yet handed over would be reset when
+        // the listener closes, after their clients sent a request: serve them too (503).
+        while let Some(Ok((stream, _peer))) = accept_now(&self.listener).await {
+            start(stream);
         }
         drop(self.listener);
         drop(connection_alive);
@@ -226,6 +233,15 @@ async fn serve_connection(
     }
     shared.metrics.record_close(reason);
     drop(registered);
+}
+
+/// The next connection the kernel has completed, without waiting for one.
+async fn accept_now(listener: &TcpListener) -> Option<io::Result<(TcpStream, SocketAddr)>> {
+    std::future::poll_fn(|cx| match listener.poll_accept(cx) {
+        Poll::Ready(accepted) => Poll::Ready(Some(accepted)),
+        Poll::Pending => Poll::Ready(None),
+    })
+    .await
 }
 
 /// Errors of the one connection being accepted, after which accepting goes on at once.

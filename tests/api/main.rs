@@ -3,6 +3,7 @@
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
 mod auth;
+mod connections;
 mod curves;
 mod errors;
 mod examples;
@@ -12,3 +13,4 @@ mod ops;
 mod reference;
 mod shape;
 mod shutdown;
+mod sigterm;

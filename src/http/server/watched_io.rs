@@ -93,23 +93,25 @@ impl<T> WatchedIo<T> {
 }
 
 /// The deadline a waiting read has in the connection's current phase, and the reason to
-/// record when it passes; `None`: reads may wait (the request timeout bounds the handling).
+/// record when it passes. While a request is handled there is none (the request timeout
+/// bounds it), only a time to check back (reason `None`): hyper does not read again after
+/// the response, so the idle deadline that follows is found when the task next wakes.
 fn read_deadline(
     connection: &Connection,
     timeouts: &Timeouts,
     draining: bool,
-) -> Option<(Instant, CloseReason)> {
+) -> (Instant, Option<CloseReason>) {
     let since = connection.since();
     match connection.phase() {
-        Phase::Head => Some((since + timeouts.header, CloseReason::HeaderTimeout)),
-        Phase::Body => Some((since + timeouts.body, CloseReason::BodyTimeout)),
-        Phase::Handling => None,
-        Phase::Idle if draining => Some((
+        Phase::Head => (since + timeouts.header, Some(CloseReason::HeaderTimeout)),
+        Phase::Body => (since + timeouts.body, Some(CloseReason::BodyTimeout)),
+        Phase::Handling => (since + timeouts.idle, None),
+        Phase::Idle if draining => (
             since + timeouts.idle.min(DRAIN_IDLE_GRACE),
-            CloseReason::Shutdown,
-        )),
-        Phase::Idle => Some((since + timeouts.idle, CloseReason::IdleTimeout)),
-        Phase::Evicted => Some((Instant::now(), CloseReason::Evicted)),
+            Some(CloseReason::Shutdown),
+        ),
+        Phase::Idle => (since + timeouts.idle, Some(CloseReason::IdleTimeout)),
+        Phase::Evicted => (since, Some(CloseReason::Evicted)),
     }
 }
 
@@ -134,11 +136,10 @@ fn earliest_deadline(
     readiness: &Readiness,
     read_waiting: bool,
     write_stalled_since: Option<Instant>,
-) -> Option<(Instant, CloseReason)> {
-    let read = read_waiting
-        .then(|| read_deadline(connection, timeouts, !readiness.is_ready()))
-        .flatten();
-    let write = write_stalled_since.map(|since| (since + timeouts.body, CloseReason::SendTimeout));
+) -> Option<(Instant, Option<CloseReason>)> {
+    let read = read_waiting.then(|| read_deadline(connection, timeouts, !readiness.is_ready()));
+    let write =
+        write_stalled_since.map(|since| (since + timeouts.body, Some(CloseReason::SendTimeout)));
     match (read, write) {
         (Some(read), Some(write)) => Some(if write.0 < read.0 { write } else { read }),
         (read, write) => read.or(write),
@@ -150,7 +151,7 @@ impl<T> WatchedIo<T> {
     /// otherwise arms the timer so that the task wakes at that deadline.
     fn poll_deadline(self: Pin<&mut Self>, cx: &mut Context<'_>) -> io::Result<()> {
         let this = self.project();
-        let Some((deadline, reason)) = earliest_deadline(
+        let Some((mut deadline, reason)) = earliest_deadline(
             this.connection,
             this.timeouts,
             this.readiness,
@@ -159,20 +160,28 @@ impl<T> WatchedIo<T> {
         ) else {
             return Ok(());
         };
-        if deadline < *this.armed {
-            this.timer.as_mut().reset(deadline);
-            *this.armed = deadline;
-        }
-        while this.timer.as_mut().poll(cx).is_ready() {
-            if Instant::now() >= deadline {
-                this.connection.record_close_reason(reason);
-                return Err(io::Error::new(io::ErrorKind::TimedOut, reason.label()));
+        loop {
+            if deadline < *this.armed || this.timer.is_elapsed() {
+                this.timer.as_mut().reset(deadline);
+                *this.armed = deadline;
             }
-            // It fired for an earlier deadline that has since moved.
-            this.timer.as_mut().reset(deadline);
-            *this.armed = deadline;
+            if this.timer.as_mut().poll(cx).is_pending() {
+                return Ok(());
+            }
+            let now = Instant::now();
+            if now < deadline {
+                // It fired for an earlier deadline that has since moved later.
+                continue;
+            }
+            match reason {
+                Some(reason) => {
+                    this.connection.record_close_reason(reason);
+                    return Err(io::Error::new(io::ErrorKind::TimedOut, reason.label()));
+                }
+                // A time to check back that has passed: check back later.
+                None => deadline = now + this.timeouts.idle,
+            }
         }
-        Ok(())
     }
 
     /// Notes the outcome of a write: progress clears a stall, waiting starts one.

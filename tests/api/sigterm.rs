@@ -1,0 +1,162 @@
+//! SIGTERM under load, against the real binary: every request a client sent is answered (200,
+//! or 503 with `Retry-After` once draining) or was refused before it was sent (the listener
+//! closed); none is cut mid-way; the process exits 0.
+
+use std::io::{BufRead, BufReader};
+use std::process::{Child, Command, Stdio};
+use std::sync::Arc;
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::time::{Duration, Instant};
+
+use serde_json::Value;
+
+/// Clients, each with its own kept-alive connection.
+const CLIENTS: usize = 8;
+
+/// Load before the signal.
+const LOAD_BEFORE_SIGNAL: Duration = Duration::from_millis(400);
+
+/// The drain delay given to the server: new connections are still accepted (and answered 503).
+const DRAIN_DELAY_MS: u64 = 300;
+
+#[derive(Default)]
+struct Counts {
+    sent: AtomicU64,
+    ok: AtomicU64,
+    shed: AtomicU64,
+    refused: AtomicU64,
+    other: AtomicU64,
+}
+
+/// Starts the binary on a free port and returns it with its address, read from its log.
+fn start_server() -> (Child, String) {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_knotshape"))
+        .env_clear()
+        .env("KNOTSHAPE_LISTEN", "127.0.0.1:0")
+        .env("KNOTSHAPE_LOG_FORMAT", "json")
+        .env(
+            "KNOTSHAPE_LOG",
+            "knotshape=info,knotshape::http::middleware=warn",
+        )
+        .env("KNOTSHAPE_DRAIN_DELAY_MS", DRAIN_DELAY_MS.to_string())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::inherit())
+        .spawn()
+        .expect("start the binary");
+    let stdout = child.stdout.take().unwrap();
+    let mut lines = BufReader::new(stdout).lines();
+    let address = loop {
+        let line = lines
+            .next()
+            .expect("the server logs its address")
+            .unwrap();
+        let Ok(entry) = serde_json::from_str::<Value>(&line) else {
+            continue;
+        };
+        if let Some(address) = entry["address"].as_str() {
+            break address.to_owned();
+        }
+    };
+    // Keep reading the log so that the server never blocks on a full pipe.
+    std::thread::spawn(move || for _ in lines {});
+    (child, format!("http://{address}"))
+}
+
+/// One client: requests on its kept-alive connection until the server refuses connections.
+async fn client_loop(base: String, counts: Arc<Counts>, index: usize) {
+    let client = reqwest::Client::builder()
+        .pool_max_idle_per_host(1)
+        .timeout(Duration::from_secs(5))
+        .build()
+        .unwrap();
+    let solve: Value =
+        serde_json::from_str(include_str!("../../benches/load/solve.json")).unwrap();
+    for round in 0usize.. {
+        let request = if (round + index) % 3 == 0 {
+            client.get(format!("{base}/healthz"))
+        } else {
+            client.post(format!("{base}/v1/shape/solve")).json(&solve)
+        };
+        counts.sent.fetch_add(1, Ordering::SeqCst);
+        match request.send().await {
+            Ok(response) => {
+                let status = response.status().as_u16();
+                let retry_after = response.headers().contains_key("retry-after");
+                let body = response.bytes().await;
+                match (status, retry_after, body) {
+                    (200, _, Ok(_)) => counts.ok.fetch_add(1, Ordering::SeqCst),
+                    (503, true, Ok(_)) => {
+                        counts.shed.fetch_add(1, Ordering::SeqCst);
+                        // A client honouring Retry-After would wait; come back shortly.
+                        tokio::time::sleep(Duration::from_millis(20)).await;
+                        0
+                    }
+                    (status, _, body) => {
+                        eprintln!("unexpected answer: {status} {body:?}");
+                        counts.other.fetch_add(1, Ordering::SeqCst)
+                    }
+                };
+            }
+            Err(error) if error.is_connect() => {
+                counts.refused.fetch_add(1, Ordering::SeqCst);
+                return;
+            }
+            Err(error) => {
+                eprintln!("request failed: {error:?}");
+                counts.other.fetch_add(1, Ordering::SeqCst);
+            }
+        }
+    }
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn sigterm_under_load_answers_every_request_and_exits_0() {
+    let (mut child, base) = start_server();
+    let counts = Arc::new(Counts::default());
+    let clients: Vec<_> = (0..CLIENTS)
+        .map(|index| tokio::spawn(client_loop(base.clone(), counts.clone(), index)))
+        .collect();
+    tokio::time::sleep(LOAD_BEFORE_SIGNAL).await;
+    let ok_before_signal = counts.ok.load(Ordering::SeqCst);
+    let signalled = Command::new("kill")
+        .args(["-TERM", &child.id().to_string()])
+        .status()
+        .expect("run kill");
+    assert!(signalled.success());
+    let signalled_at = Instant::now();
+
+    for client in clients {
+        tokio::time::timeout(Duration::from_secs(10), client)
+            .await
+            .expect("every client sees the listener close within 10 s")
+            .unwrap();
+    }
+    let status = loop {
+        if let Some(status) = child.try_wait().unwrap() {
+            break status;
+        }
+        assert!(
+            signalled_at.elapsed() < Duration::from_secs(10),
+            "the server did not exit within 10 s of SIGTERM"
+        );
+        tokio::time::sleep(Duration::from_millis(20)).await;
+    };
+    let load = |counter: &AtomicU64| counter.load(Ordering::SeqCst);
+    let (sent, ok, shed, refused, other) = (
+        load(&counts.sent),
+        load(&counts.ok),
+        load(&counts.shed),
+        load(&counts.refused),
+        load(&counts.other),
+    );
+    eprintln!(
+        "sigterm under load: sent {sent}, 200 {ok}, 503 {shed}, refused before sending {refused}, \
+         other {other}; exit {status}"
+    );
+    assert!(status.success(), "exit status {status}");
+    assert_eq!(other, 0, "requests cut or answered otherwise");
+    assert_eq!(sent, ok + shed + refused, "every request is accounted for");
+    assert!(ok_before_signal > 0, "the load reached the server");
+    assert!(shed > 0, "requests during the drain delay are answered 503");
+    assert_eq!(refused, CLIENTS as u64, "each client ends at the closed listener");
+}
