@@ -81,8 +81,9 @@ impl Target {
         if status.is_server_error() {
             return Err(format!("{path}: server error {status}: {text}"));
         }
-        let answer: Value = serde_json::from_slice(&bytes)
-            .map_err(|error| format!("{path}: {status} with a body that is not JSON ({error}): {text}"))?;
+        let answer: Value = serde_json::from_slice(&bytes).map_err(|error| {
+            format!("{path}: {status} with a body that is not JSON ({error}): {text}")
+        })?;
         if status.is_client_error() {
             check_problem(status.as_u16(), &content_type, &answer)
                 .map_err(|why| format!("{path}: {status}: {why}: {text}"))?;
@@ -95,7 +96,9 @@ impl Target {
 /// that says why; listed field errors each name a JSON pointer and say why.
 fn check_problem(status: u16, content_type: &str, problem: &Value) -> Result<(), String> {
     if content_type != crate::http::error::PROBLEM_JSON {
-        return Err(format!("content type {content_type:?}, not a problem document"));
+        return Err(format!(
+            "content type {content_type:?}, not a problem document"
+        ));
     }
     if problem["status"].as_u64() != Some(u64::from(status)) {
         return Err("the problem's status differs from the answer's".to_owned());
@@ -107,7 +110,9 @@ fn check_problem(status: u16, content_type: &str, problem: &Value) -> Result<(),
     if let Some(errors) = problem.get("errors") {
         let errors = errors.as_array().ok_or("`errors` is not a list")?;
         for error in errors {
-            let pointer = error["pointer"].as_str().ok_or("a field error without pointer")?;
+            let pointer = error["pointer"]
+                .as_str()
+                .ok_or("a field error without pointer")?;
             if !(pointer.is_empty() || pointer.starts_with('/')) {
                 return Err(format!("{pointer:?} is not a JSON pointer"));
             }

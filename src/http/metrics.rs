@@ -327,15 +327,23 @@ mod tests {
         }
         let first = metrics.open_connection();
         let second = metrics.open_connection();
-        assert!(metrics.encode().contains("knotshape_http_connections_open 2"));
+        assert!(
+            metrics
+                .encode()
+                .contains("knotshape_http_connections_open 2")
+        );
         drop(first);
         metrics.record_close(CloseReason::HeaderTimeout);
         metrics.record_close(CloseReason::HeaderTimeout);
         metrics.record_close(CloseReason::OverCapacity);
         let text = metrics.encode();
         assert!(text.contains("knotshape_http_connections_open 1"));
-        assert!(text.contains(r#"knotshape_http_connections_closed_total{reason="header_timeout"} 2"#));
-        assert!(text.contains(r#"knotshape_http_connections_closed_total{reason="over_capacity"} 1"#));
+        assert!(
+            text.contains(r#"knotshape_http_connections_closed_total{reason="header_timeout"} 2"#)
+        );
+        assert!(
+            text.contains(r#"knotshape_http_connections_closed_total{reason="over_capacity"} 1"#)
+        );
         assert!(text.contains(r#"knotshape_http_connections_closed_total{reason="completed"} 0"#));
         drop(second);
     }

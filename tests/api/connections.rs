@@ -118,7 +118,10 @@ async fn half_open_heads_and_silent_connections_are_closed_at_the_header_timeout
         assert!(after < timeout + SLACK, "closed only after {after:?}");
     }
     let (_, after) = trickle.await.unwrap();
-    assert!(after < Duration::from_millis(HEADER_MS) + SLACK, "{after:?}");
+    assert!(
+        after < Duration::from_millis(HEADER_MS) + SLACK,
+        "{after:?}"
+    );
     assert!(metric(&app, &closed("header_timeout")).await >= 3.0);
 }
 
@@ -179,7 +182,10 @@ async fn a_trickling_body_is_answered_408_and_the_connection_closed() {
     let text = String::from_utf8_lossy(&received);
     let (head, body) = text.split_once("\r\n\r\n").expect("a response");
     assert!(head.starts_with("HTTP/1.1 408"), "{head}");
-    assert!(head.to_ascii_lowercase().contains("connection: close"), "{head}");
+    assert!(
+        head.to_ascii_lowercase().contains("connection: close"),
+        "{head}"
+    );
     assert!(
         head.to_ascii_lowercase()
             .contains("content-type: application/problem+json"),
@@ -247,7 +253,9 @@ async fn hold_half_open(app: &TestApp, count: usize) -> Vec<TcpStream> {
             continue;
         };
         // The server may already have displaced it; a failed write is fine.
-        let _ = stream.write_all(b"POST /v1/shape/solve HTTP/1.1\r\nHost: x\r\n").await;
+        let _ = stream
+            .write_all(b"POST /v1/shape/solve HTTP/1.1\r\nHost: x\r\n")
+            .await;
         held.push(stream);
     }
     held
@@ -261,8 +269,7 @@ async fn probes_and_a_solve_answer_within(app: &TestApp, limit: Duration) {
         assert_eq!(response.status(), 200, "{path}");
         assert!(start.elapsed() < limit, "{path} took {:?}", start.elapsed());
     }
-    let body: Value =
-        serde_json::from_str(include_str!("../../benches/load/solve.json")).unwrap();
+    let body: Value = serde_json::from_str(include_str!("../../benches/load/solve.json")).unwrap();
     let start = Instant::now();
     let (status, answer) = app.post_json("/v1/shape/solve", &body).await;
     assert_eq!(status, 200, "{answer}");
@@ -302,6 +309,9 @@ async fn beyond_the_cap_half_open_connections_are_displaced_and_probes_still_ans
     let open = metric(&app, "knotshape_http_connections_open").await;
     assert!(open <= 20.0 + 2.0, "{open} open above a cap of 20");
     let evicted = metric(&app, &closed("evicted")).await;
-    assert!(evicted >= (count - 20) as f64, "{evicted} displaced of {count}");
+    assert!(
+        evicted >= (count - 20) as f64,
+        "{evicted} displaced of {count}"
+    );
     drop(held);
 }

@@ -46,10 +46,7 @@ fn start_server() -> (Child, String) {
     let stdout = child.stdout.take().unwrap();
     let mut lines = BufReader::new(stdout).lines();
     let address = loop {
-        let line = lines
-            .next()
-            .expect("the server logs its address")
-            .unwrap();
+        let line = lines.next().expect("the server logs its address").unwrap();
         let Ok(entry) = serde_json::from_str::<Value>(&line) else {
             continue;
         };
@@ -69,8 +66,7 @@ async fn client_loop(base: String, counts: Arc<Counts>, index: usize) {
         .timeout(Duration::from_secs(5))
         .build()
         .unwrap();
-    let solve: Value =
-        serde_json::from_str(include_str!("../../benches/load/solve.json")).unwrap();
+    let solve: Value = serde_json::from_str(include_str!("../../benches/load/solve.json")).unwrap();
     for round in 0usize.. {
         let request = if (round + index) % 3 == 0 {
             client.get(format!("{base}/healthz"))
@@ -158,5 +154,8 @@ async fn sigterm_under_load_answers_every_request_and_exits_0() {
     assert_eq!(sent, ok + shed + refused, "every request is accounted for");
     assert!(ok_before_signal > 0, "the load reached the server");
     assert!(shed > 0, "requests during the drain delay are answered 503");
-    assert_eq!(refused, CLIENTS as u64, "each client ends at the closed listener");
+    assert_eq!(
+        refused, CLIENTS as u64,
+        "each client ends at the closed listener"
+    );
 }

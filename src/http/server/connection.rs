@@ -123,10 +123,8 @@ impl Connection {
             Phase::Body
         };
         let before = self.phase.swap(phase as u8, Ordering::AcqRel);
-        self.since_nanos.store(
-            nanos_between(self.epoch, Instant::now()),
-            Ordering::Relaxed,
-        );
+        self.since_nanos
+            .store(nanos_between(self.epoch, Instant::now()), Ordering::Relaxed);
         if Phase::from_u8(before) == Phase::Evicted {
             self.close_after_response.store(true, Ordering::Relaxed);
         }
@@ -198,7 +196,9 @@ impl Connection {
     /// The reason recorded, if any.
     pub(super) fn close_reason(&self) -> Option<CloseReason> {
         let code = self.close_reason.load(Ordering::Acquire);
-        CloseReason::ALL.get(usize::from(code).checked_sub(1)?).copied()
+        CloseReason::ALL
+            .get(usize::from(code).checked_sub(1)?)
+            .copied()
     }
 
     /// Wakes the connection's task so that its socket re-checks the state.
@@ -228,10 +228,16 @@ mod tests {
         assert!(connection.is_evictable());
         connection.request_started(false);
         assert_eq!(connection.phase(), Phase::Body);
-        assert!(!connection.try_evict(), "a body on its way is not displaced");
+        assert!(
+            !connection.try_evict(),
+            "a body on its way is not displaced"
+        );
         connection.body_finished();
         assert_eq!(connection.phase(), Phase::Handling);
-        assert!(!connection.try_evict(), "a request being served is not displaced");
+        assert!(
+            !connection.try_evict(),
+            "a request being served is not displaced"
+        );
         connection.set_write_stalled(true);
         assert!(connection.is_evictable(), "a client that does not read is");
         connection.set_write_stalled(false);

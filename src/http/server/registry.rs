@@ -120,7 +120,9 @@ mod tests {
         let registry = Registry::new(2);
         let t0 = Instant::now();
         let first = registry.admit(t0).unwrap();
-        let second = registry.admit(t0 + std::time::Duration::from_millis(5)).unwrap();
+        let second = registry
+            .admit(t0 + std::time::Duration::from_millis(5))
+            .unwrap();
         // The first serves a request; the second waits for its head.
         first.connection.request_started(true);
         let third = registry.admit(t0).expect("the waiting one is displaced");

@@ -76,19 +76,16 @@ impl Future for ResponseFuture {
         let Ok(mut response) = ready!(this.inner.poll(cx));
         let body_timed_out = this.connection.close_reason() == Some(CloseReason::BodyTimeout);
         if body_timed_out {
-            response =
-                Problem::for_status(StatusCode::REQUEST_TIMEOUT, BODY_TIMEOUT_DETAIL).into_response();
+            response = Problem::for_status(StatusCode::REQUEST_TIMEOUT, BODY_TIMEOUT_DETAIL)
+                .into_response();
         }
-        if body_timed_out || !this.readiness.is_ready() || this.connection.close_after_response()
-        {
+        if body_timed_out || !this.readiness.is_ready() || this.connection.close_after_response() {
             response
                 .headers_mut()
                 .insert(header::CONNECTION, HeaderValue::from_static("close"));
         }
         let connection = this.connection.clone();
-        Poll::Ready(Ok(
-            response.map(|inner| ResponseBody { inner, connection })
-        ))
+        Poll::Ready(Ok(response.map(|inner| ResponseBody { inner, connection })))
     }
 }
 
