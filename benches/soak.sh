@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Soak test of the release build on loopback: $DURATION seconds (default 600)
-# of mixed traffic from examples/soak.rs to every endpoint of the server's own
+# of mixed traffic from benches/soak/generator.rs to every endpoint of the server's own
 # OpenAPI document (good requests, malformed JSON, invalid curves, wrong types,
 # too-large bodies, unknown paths and methods), plus slow clients (half-open
 # request heads, bodies trickling slower than the body timeout), at a bounded

@@ -1,4 +1,4 @@
-//! Soak load generator for `benches/soak.sh`: mixed traffic over loopback to every endpoint
+//! Soak load generator for `benches/soak.sh` (`cargo run --release --example soak`): mixed traffic over loopback to every endpoint
 //! of the running server's own OpenAPI document, good and bad requests, a few slow clients,
 //! for a bounded time and at a bounded rate; prints the server's RSS and the error counts by
 //! class every 10 s, and exits 1 when the server made an error of its own (a 5xx other than
