@@ -9,7 +9,8 @@
 # passes (exit 0) only when the server made no error of its own (no 5xx except
 # 503 shedding with Retry-After, no reset, every answer the expected one, every
 # slow client closed in time), its RSS grew by less than 10 % after a 60 s
-# warm-up, and it exits 0 on SIGTERM at the end.
+# warm-up (median of the last minute against the median of the first minute
+# after the warm-up), and it exits 0 on SIGTERM at the end.
 #
 # Usage: bash benches/soak.sh
 # Environment: DURATION (s, default 600; at most 3600), RATE (requests/s,

@@ -3,7 +3,9 @@
 //! for a bounded time and at a bounded rate; prints the server's RSS and the error counts by
 //! class every 10 s, and exits 1 when the server made an error of its own (a 5xx other than
 //! 503 shedding, a reset, an answer other than the one expected) or its RSS grew by 10 % or
-//! more after the warm-up.
+//! more after the warm-up: the median RSS of the last minute against the median of the first
+//! minute after the warm-up (medians, because a few concurrent too-large bodies — each
+//! buffered up to the limit before the 413 — move single samples by megabytes).
 //!
 //! The endpoints come from `GET /openapi.json`: every GET operation, and every POST with the
 //! example of its request schema as the good body — a new documented endpoint is soaked
@@ -316,6 +318,16 @@ async fn wait_for_close(stream: &mut TcpStream, until: Instant) -> String {
     }
 }
 
+/// RSS samples (10 s apart) in a one-minute window.
+const RSS_WINDOW: usize = 6;
+
+/// The median of `values` (0 for none).
+fn median(values: &[u64]) -> u64 {
+    let mut sorted = values.to_vec();
+    sorted.sort_unstable();
+    sorted.get(sorted.len() / 2).copied().unwrap_or(0)
+}
+
 /// The server's resident set size in KiB.
 fn rss_kib(pid: &str) -> Option<u64> {
     let status = std::fs::read_to_string(format!("/proc/{pid}/status")).ok()?;
@@ -405,9 +417,8 @@ async fn main() -> std::process::ExitCode {
         )));
     }
 
-    let mut baseline: Option<u64> = None;
-    let mut peak_after_warm_up = 0;
-    let mut last_rss = 0;
+    // RSS samples after the warm-up, one per 10 s.
+    let mut samples: Vec<u64> = Vec::new();
     let mut last_requests = 0;
     while Instant::now() < until {
         tokio::time::sleep(
@@ -420,10 +431,8 @@ async fn main() -> std::process::ExitCode {
         };
         let elapsed = start.elapsed();
         if elapsed >= WARM_UP {
-            baseline.get_or_insert(rss);
-            peak_after_warm_up = peak_after_warm_up.max(rss);
+            samples.push(rss);
         }
-        last_rss = rss;
         let tally = tally.lock().unwrap();
         println!(
             "soak: {:>4} s  rss {:>7} KiB  requests {:>8} (+{:.0}/s)  server errors {}",
@@ -443,11 +452,14 @@ async fn main() -> std::process::ExitCode {
     for (key, count) in &tally.counts {
         println!("  {count:>9}  {key}");
     }
-    let baseline = baseline.unwrap_or(last_rss);
-    let growth = (last_rss as f64 - baseline as f64) / baseline.max(1) as f64;
+    let window = samples.len().min(RSS_WINDOW);
+    let baseline = median(&samples[..window]);
+    let end = median(&samples[samples.len() - window..]);
+    let peak = samples.iter().copied().max().unwrap_or(0);
+    let growth = (end as f64 - baseline as f64) / baseline.max(1) as f64;
     println!(
-        "\nsoak: requests {}; server errors {}; rss after warm-up {baseline} KiB, at the end {last_rss} KiB \
-         (peak {peak_after_warm_up} KiB), growth {:+.1} %",
+        "\nsoak: requests {}; server errors {}; median rss of the first minute after warm-up \
+         {baseline} KiB, of the last minute {end} KiB (peak {peak} KiB), growth {:+.1} %",
         tally.requests,
         tally.server_errors,
         growth * 100.0

@@ -3,6 +3,7 @@
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
 mod auth;
+mod binary;
 mod connections;
 mod curves;
 mod errors;
@@ -13,4 +14,3 @@ mod ops;
 mod reference;
 mod shape;
 mod shutdown;
-mod sigterm;
