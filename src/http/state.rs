@@ -4,7 +4,7 @@
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use tokio::sync::{Semaphore, watch};
+use tokio::sync::Semaphore;
 
 use super::metrics::Metrics;
 use crate::config::{ApiKey, Config, Limits};
@@ -15,9 +15,6 @@ use crate::spline::{CurveLimits, MAX_DEGREE};
 #[derive(Debug, Clone)]
 pub struct Readiness {
     ready: Arc<AtomicBool>,
-    /// Turns true with `ready` turning false, for those who wait for it
-    /// ([`Readiness::draining`]); `ready` is the cheap check for every request.
-    draining: watch::Sender<bool>,
 }
 
 impl Default for Readiness {
@@ -31,7 +28,6 @@ impl Readiness {
     pub fn new() -> Self {
         Readiness {
             ready: Arc::new(AtomicBool::new(true)),
-            draining: watch::Sender::new(false),
         }
     }
 
@@ -43,17 +39,6 @@ impl Readiness {
     /// Starts draining: `/readyz` answers 503 and new `/v1` requests are refused with 503.
     pub fn start_draining(&self) {
         self.ready.store(false, Ordering::SeqCst);
-        self.draining.send_replace(true);
-    }
-
-    /// Completes once draining has started (at once if it already has).
-    pub fn draining(&self) -> impl Future<Output = ()> + Send + 'static {
-        let mut receiver = self.draining.subscribe();
-        async move {
-            // An error means the sender is gone, which cannot happen while `self` lives;
-            // either way there is nothing more to wait for.
-            let _ = receiver.wait_for(|draining| *draining).await;
-        }
     }
 }
 
