@@ -11,6 +11,9 @@
 //! example of its request schema as the good body — a new documented endpoint is soaked
 //! without a change here. [`BAD_REQUESTS`] lists the bad variants, one line each.
 //!
+//! One file of some 470 lines: the example is a single binary target, and its parts (endpoint
+//! discovery, the request mix, slow clients, the report) are read together.
+//!
 //! Environment: `SOAK_URL` (e.g. `http://127.0.0.1:8080`), `SOAK_SERVER_PID` (for RSS, from
 //! `/proc`), `SOAK_DURATION_SECS` (default 600), `SOAK_RATE` (requests/s, default 400),
 //! `SOAK_MAX_BODY_BYTES` (the server's limit, default 1 MiB).
