@@ -48,8 +48,12 @@ pub fn app(config: &Config) -> Router {
 /// (`/readyz` and `/v1` answer 503 once it starts draining).
 pub fn app_with_readiness(config: &Config, readiness: Readiness) -> Router {
     let openapi_json: Arc<str> = openapi_json().into();
-    let state = AppState::new(config, readiness, openapi_json);
+    app_with_state(config, AppState::new(config, readiness, openapi_json))
+}
 
+/// The router serving every route with `state`, which its creator shares (the server reports
+/// connection metrics through `state.metrics`).
+pub fn app_with_state(config: &Config, state: AppState) -> Router {
     let v1 = v1_routes().route_layer(middleware::GuardV1Layer::new(state.clone()));
     let (router, _) = OpenApiRouter::with_openapi(ApiDoc::openapi())
         .merge(v1)
