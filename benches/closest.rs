@@ -96,7 +96,11 @@ fn bench_closest(c: &mut Criterion) {
         .ok()
         .and_then(|v| v.parse::<usize>().ok())
     {
-        let scaled = if poles == 60 { sixty.clone() } else { curve(poles, &mut rng) };
+        let scaled = if poles == 60 {
+            sixty.clone()
+        } else {
+            curve(poles, &mut rng)
+        };
         let search = ClosestPointSearch::new(&scaled, None).unwrap();
         let total: f64 = points.iter().map(|&q| search.closest(q).distance).sum();
         eprintln!("{poles} poles: sum of distances {total}");

@@ -7,6 +7,8 @@
 //! as they are documented. The input's first byte picks the endpoint (modulo their number),
 //! the rest is the body.
 
+pub mod structured;
+
 use axum::Router;
 use axum::body::{Body, to_bytes};
 use axum::http::{Request, header};
