@@ -193,6 +193,10 @@ impl Modify for SecurityAndCommonErrors {
                 "401",
                 "An API key is configured and the request lacks it or has a wrong one",
             ),
+            (
+                "408",
+                "The body arrived slower than the configured body timeout; the connection is closed",
+            ),
             ("413", "The body exceeds the configured limit"),
             ("415", "The body is not sent as application/json"),
             (
