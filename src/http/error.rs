@@ -269,6 +269,30 @@ impl From<JsonRejection> for ApiError {
     }
 }
 
+/// serde's message for a number with a fraction or exponent where a count or an index is
+/// read (`3.0` for `degree`, as Python's `json.dumps(3.0)` writes it) names a Rust type;
+/// this one says what to send. Such numbers are refused, never rounded.
+fn plain_integer_message(message: String) -> String {
+    let expected_integer = [
+        "expected usize",
+        "expected u32",
+        "expected u64",
+        "expected u8",
+    ]
+    .iter()
+    .any(|expected| message.contains(expected));
+    if message.starts_with("invalid type: floating point") && expected_integer {
+        let found = message
+            .split('`')
+            .nth(1)
+            .map_or_else(String::new, |number| format!(" (got {number})"));
+        return format!(
+            "expected an integer written without a fraction or exponent, such as 3, not 3.0{found}"
+        );
+    }
+    message
+}
+
 /// Maps a JSON parse failure to a 400 with the pointer where it happened; a number too large
 /// for a double (`1e999`, which would be infinite) is a 422 like any other non-finite number.
 fn from_serde_error(
@@ -292,6 +316,7 @@ fn from_serde_error(
                 // A string of the right type that names no allowed value breaks a rule.
                 return ApiError::invalid(pointer, message);
             }
+            let message = plain_integer_message(message);
             return ApiError::MalformedBody {
                 detail: message.clone(),
                 errors: vec![FieldError {

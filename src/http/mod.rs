@@ -9,6 +9,7 @@ pub mod error;
 pub mod extract;
 pub mod metrics;
 pub mod middleware;
+pub mod openapi_rules;
 pub mod pointer;
 pub mod routes;
 pub mod server;
@@ -144,10 +145,18 @@ pub fn openapi() -> OpenApiDocument {
 
 /// The OpenAPI document as pretty JSON with a final newline (the form of
 /// `openapi/openapi.json`).
+///
+/// The rules utoipa's derive cannot state (array lengths, exclusive minimums, answers without
+/// `null`, ...) are written into it by [`openapi_rules::apply`].
 pub fn openapi_json() -> String {
-    let mut json = openapi()
-        .to_pretty_json()
-        .unwrap_or_else(|error| format!("{{\"error\": \"{error}\"}}"));
+    let mut json = match serde_json::to_value(openapi()) {
+        Ok(mut document) => {
+            openapi_rules::apply(&mut document);
+            serde_json::to_string_pretty(&document)
+                .unwrap_or_else(|error| format!("{{\"error\": \"{error}\"}}"))
+        }
+        Err(error) => format!("{{\"error\": \"{error}\"}}"),
+    };
     json.push('\n');
     json
 }

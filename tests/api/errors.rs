@@ -480,3 +480,25 @@ async fn random_and_degenerate_requests_never_give_a_server_error() {
         }
     }
 }
+
+/// A whole-number float where an integer is expected (`"degree": 3.0`, as Python's
+/// `json.dumps(3.0)` writes it) is refused with a 400 that names the field and says an integer
+/// is expected: the API reads JSON integers only, as documented in docs/api.md.
+#[tokio::test]
+async fn whole_number_floats_for_integers_are_a_400_that_says_why() {
+    let app = crate::helpers::spawn_app().await;
+    let mut curve = cubic_2d().to_json(false);
+    curve["degree"] = serde_json::json!(3.0);
+    let body = serde_json::json!({"curve": curve, "samples": 3});
+    let response = app.post("/v1/curves/evaluate", &body).await;
+    let problem = crate::helpers::expect_problem(response, 400, Some("/curve/degree")).await;
+    let detail = problem["errors"][0]["detail"]
+        .as_str()
+        .unwrap_or_default()
+        .to_owned();
+    assert!(
+        detail.contains("integer") && detail.contains("3.0"),
+        "{problem}"
+    );
+    assert!(!detail.contains("usize"), "{problem}");
+}
