@@ -10,6 +10,7 @@ pub mod extract;
 pub mod metrics;
 pub mod middleware;
 pub mod pointer;
+pub mod regions_svg;
 pub mod routes;
 pub mod server;
 pub mod state;
@@ -35,7 +36,7 @@ use utoipa_axum::routes;
 
 use crate::config::Config;
 use error::{FieldError, PROBLEM_JSON, Problem};
-use routes::{closest, curves, ops, shape, toolkit};
+use routes::{closest, curves, editor, ops, shape, toolkit};
 pub use server::{Server, shutdown_signal};
 pub use state::{AppState, Readiness};
 
@@ -58,6 +59,7 @@ pub fn app_with_readiness(config: &Config, readiness: Readiness) -> Router {
 
     let cors = cors_layer(&config.cors_allow_origins);
     router
+        .merge(editor::router())
         .fallback(middleware::not_found)
         .method_not_allowed_fallback(middleware::method_not_allowed)
         .layer(

@@ -4,6 +4,8 @@
 
 use axum::Extension;
 use axum::extract::State;
+use axum::http::HeaderMap;
+use axum::response::Response;
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
@@ -14,6 +16,7 @@ use crate::http::error::{ApiError, FieldError, Problem};
 use crate::http::extract::ApiJson;
 use crate::http::middleware::AdmissionPermit;
 use crate::http::pointer::JsonPointer;
+use crate::http::regions_svg;
 use crate::http::state::AppState;
 use crate::http::wire::methods::{ControlPointMembershipBody, Method, Methods};
 use crate::shape::{
@@ -224,6 +227,11 @@ pub struct RegionsRequest {
     #[serde(default)]
     #[schema(example = 0.01)]
     pub tolerance: Option<f64>,
+    /// A target point (same dimension as the control points), drawn in the SVG picture
+    /// (`Accept: image/svg+xml`); checked but otherwise unused by the JSON answer.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schema(example = json!([4.746666666666666, 3.3233333333333333]))]
+    pub target: Option<Vec<f64>>,
 }
 
 /// The target in the control triangle's frame:
@@ -577,7 +585,10 @@ pub async fn solve(
     tag = "shape",
     request_body = RegionsRequest,
     responses(
-        (status = 200, description = "Boundary polygons per candidate and region", body = RegionsResponse),
+        (status = 200, description = "Boundary polygons per candidate and region (JSON, the default), or, with `Accept: image/svg+xml`, an SVG picture of them: one panel per candidate with its control triangle, the regions in their colours (polygon `points` are the JSON answer's x and y), the picked point, the target when the request has one, and a legend", content(
+            (RegionsResponse = "application/json"),
+            (String = "image/svg+xml"),
+        )),
         (status = 400, description = "Malformed JSON, wrong types, unknown fields", body = Problem, content_type = "application/problem+json"),
         (status = 422, description = "A rule is broken (see `errors`)", body = Problem, content_type = "application/problem+json"),
     ),
@@ -586,16 +597,18 @@ pub async fn solve(
 pub async fn regions(
     State(state): State<AppState>,
     admission: Option<Extension<AdmissionPermit>>,
+    headers: HeaderMap,
     ApiJson(request): ApiJson<RegionsRequest>,
-) -> Result<ApiJson<RegionsResponse>, ApiError> {
+) -> Result<Response, ApiError> {
     let (limits, curve_limits) = (state.limits, state.curve_limits);
     // Up to two sides of six polygons, each up to the vertex limit.
     let work = 12 * limits.max_polygon_vertices.max(MIN_POLYGON_VERTEX_LIMIT);
+    let svg = regions_svg::prefers_svg(&headers);
     compute(admission, work, move || {
-        regions_request(&request, &limits, &curve_limits)
+        let answer = regions_request(&request, &limits, &curve_limits)?;
+        regions_svg::respond(&request, answer, &curve_limits, svg)
     })
     .await
-    .map(ApiJson)
 }
 
 fn regions_request(
