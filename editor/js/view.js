@@ -63,51 +63,81 @@ function drawControlPolygon(curve, className, radius, parent) {
   });
 }
 
+/** What each layer of the scene was last drawn from: a layer whose inputs are the same
+ * objects is left as it is (a drag redraws only the preview and the dots). */
+const drawn = new WeakMap();
+
+function layer(scene, name) {
+  let group = scene.querySelector(`:scope > g.layer-${name}`);
+  if (!group) {
+    group = element("g", { class: `layer-${name}` }, scene);
+  }
+  return group;
+}
+
+/** Redraws `group` by `paint` unless `inputs` are the objects it was drawn from. */
+function redraw(group, inputs, paint) {
+  const previous = drawn.get(group);
+  if (previous && previous.length === inputs.length && previous.every((value, i) => value === inputs[i])) {
+    return;
+  }
+  drawn.set(group, inputs);
+  group.replaceChildren();
+  paint(group);
+}
+
 function drawScene(state, scene) {
   const frame = state.frame;
   scene.setAttribute("transform", `matrix(${frame.scale} 0 0 ${-frame.scale} ${frame.offset[0]} ${frame.offset[1]})`);
-  scene.replaceChildren();
   const radius = DOT / frame.scale;
   const curve = currentCurve(state);
-  const layers = Object.fromEntries(["regions", "control", "curve", "preview", "marks"].map(
-    (name) => [name, element("g", { class: `layer-${name}` }, scene)]));
-  for (const candidate of state.regions?.candidates ?? []) {
-    for (const region of candidate.regions) {
-      element("polygon", {
-        points: pairs(region.polygon),
-        class: "region",
-        fill: REGION_COLOURS[region.region],
-        stroke: REGION_COLOURS[region.region],
-        "data-region": region.region,
-        "data-side": candidate.side,
-      }, layers.regions);
+  const layers = Object.fromEntries(["regions", "control", "curve", "preview", "marks", "dots"].map(
+    (name) => [name, layer(scene, name)]));
+  redraw(layers.regions, [state.regions, frame], (group) => {
+    for (const candidate of state.regions?.candidates ?? []) {
+      for (const region of candidate.regions) {
+        element("polygon", {
+          points: pairs(region.polygon),
+          class: "region",
+          fill: REGION_COLOURS[region.region],
+          stroke: REGION_COLOURS[region.region],
+          "data-region": region.region,
+          "data-side": candidate.side,
+        }, group);
+      }
+      if (candidate.applicable && candidate.triangle) {
+        element("polygon", { points: pairs(candidate.triangle), class: "triangle", "data-side": candidate.side }, group);
+      }
     }
-    if (candidate.applicable && candidate.triangle) {
-      element("polygon", { points: pairs(candidate.triangle), class: "triangle", "data-side": candidate.side }, layers.regions);
+  });
+  redraw(layers.control, [curve, frame], (group) => drawControlPolygon(curve, "control", radius, group));
+  redraw(layers.curve, [state.drawing], (group) => drawCurve(state.drawing, "curve", group));
+  redraw(layers.marks, [state.drawing, frame], (group) => {
+    for (const point of state.drawing?.knotPoints ?? []) {
+      element("rect", {
+        x: point[0] - radius * 0.6, y: point[1] - radius * 0.6,
+        width: radius * 1.2, height: radius * 1.2, class: "knot",
+      }, group);
     }
-  }
-  drawControlPolygon(curve, "control", radius, layers.control);
-  drawCurve(state.drawing, "curve", layers.curve);
-  for (const point of state.drawing?.knotPoints ?? []) {
-    element("rect", {
-      x: point[0] - radius * 0.6, y: point[1] - radius * 0.6,
-      width: radius * 1.2, height: radius * 1.2, class: "knot",
-    }, layers.marks);
-  }
+  });
   const drag = state.drag;
-  if (drag?.preview) {
-    if (drag.solutions[drag.chosen]?.method === "control_points") {
-      drawControlPolygon(drag.preview, "preview-control", radius, layers.preview);
+  const chosen = drag?.solutions[drag.chosen];
+  redraw(layers.preview, [drag?.preview, drag?.previewDrawing, frame], (group) => {
+    if (!drag?.preview) return;
+    if (chosen?.method === "control_points") {
+      drawControlPolygon(drag.preview, "preview-control", radius, group);
     }
-    drawCurve(drag.previewDrawing, "preview", layers.preview);
-  }
-  if (state.pick) {
-    const shown = drag?.solutions[drag.chosen]?.point ?? state.pick.point;
-    element("circle", { cx: shown[0], cy: shown[1], r: radius, class: "picked" }, layers.marks);
-  }
-  if (drag?.target) {
-    element("circle", { cx: drag.target[0], cy: drag.target[1], r: radius, class: "target" }, layers.marks);
-  }
+    drawCurve(drag.previewDrawing, "preview", group);
+  });
+  redraw(layers.dots, [state.pick, chosen, drag?.target, frame], (group) => {
+    if (state.pick) {
+      const shown = chosen?.point ?? state.pick.point;
+      element("circle", { cx: shown[0], cy: shown[1], r: radius, class: "picked" }, group);
+    }
+    if (drag?.target) {
+      element("circle", { cx: drag.target[0], cy: drag.target[1], r: radius, class: "target" }, group);
+    }
+  });
 }
 
 function drawKnotStrip(state, strip) {

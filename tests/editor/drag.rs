@@ -1,0 +1,383 @@
+//! The editor in Chromium, as a designer uses it: pick a point of the sample, drag it into
+//! a region and outside every region, undo and redo, and edit a single Bézier piece (knots
+//! inserted first). Each committed curve is checked against what the API answers for the
+//! same request, and against the target it must pass through.
+
+use std::path::PathBuf;
+
+use serde_json::{Value, json};
+
+use super::browser::Browser;
+use super::page::Page;
+use crate::helpers::{TestApp, spawn_app};
+
+/// The page's sample cubic (editor/js/sample.js).
+fn sample() -> Value {
+    json!({"degree": 3, "control_points": [[0, 0], [1, 3], [3, 4], [5, 3.5], [6, 1], [8, 0], [9, 2], [10, 4]],
+           "knots": [0, 0, 0, 0, 0.2, 0.35, 0.5, 0.75, 1, 1, 1, 1]})
+}
+
+/// Both methods, as the page sends them by default.
+const BOTH: [&str; 2] = ["knots", "control_points"];
+
+/// The curve's numbers, for comparison regardless of how JSON wrote them (`0` or `0.0`).
+fn numbers(curve: &Value) -> (u64, Vec<f64>, Vec<f64>, Option<Vec<f64>>) {
+    let list = |value: &Value| -> Vec<f64> {
+        value
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|v| v.as_f64().unwrap())
+            .collect()
+    };
+    let points = curve["control_points"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .flat_map(|p| list(p))
+        .collect();
+    let weights = curve.get("weights").filter(|w| !w.is_null()).map(list);
+    (
+        curve["degree"].as_u64().unwrap(),
+        list(&curve["knots"]),
+        points,
+        weights,
+    )
+}
+
+/// The curve a solution describes (its new knots or new control points).
+fn apply(curve: &Value, solution: &Value) -> Value {
+    let mut next = curve.clone();
+    match solution["method"].as_str().unwrap() {
+        "knots" => next["knots"] = solution["knots"].clone(),
+        "control_points" => next["control_points"] = solution["control_points"].clone(),
+        other => panic!("unknown method {other}"),
+    }
+    next
+}
+
+/// The solution with the smallest `max_deviation` (the page's default choice).
+fn smallest_deviation(solutions: &[Value]) -> &Value {
+    solutions
+        .iter()
+        .min_by(|a, b| {
+            a["max_deviation"]
+                .as_f64()
+                .unwrap()
+                .total_cmp(&b["max_deviation"].as_f64().unwrap())
+        })
+        .expect("at least one solution")
+}
+
+async fn solve(app: &TestApp, curve: &Value, t: f64, target: [f64; 2], methods: &[&str]) -> Value {
+    let request = json!({"curve": curve, "parameter": t, "target": target, "side": "both",
+                         "nearest": true, "methods": methods});
+    let (status, body) = app.post_json("/v1/shape/solve", &request).await;
+    assert_eq!(status, 200, "{body}");
+    body
+}
+
+async fn point_at(app: &TestApp, curve: &Value, t: f64) -> [f64; 2] {
+    let (status, body) = app
+        .post_json(
+            "/v1/curves/evaluate",
+            &json!({"curve": curve, "parameters": [t]}),
+        )
+        .await;
+    assert_eq!(status, 200, "{body}");
+    let point = &body["points"][0];
+    [point[0].as_f64().unwrap(), point[1].as_f64().unwrap()]
+}
+
+fn close(a: [f64; 2], b: [f64; 2]) -> bool {
+    let scale = 1.0 + a[0].abs().max(a[1].abs());
+    (a[0] - b[0]).hypot(a[1] - b[1]) <= 1e-9 * scale
+}
+
+/// Pixels around `centre`, nearest first (rings of 8 px, 16 directions).
+fn around(centre: (i64, i64), rings: std::ops::RangeInclusive<i64>) -> Vec<(i64, i64)> {
+    let mut pixels = Vec::new();
+    for ring in rings {
+        for step in 0..16 {
+            let angle = f64::from(step) * std::f64::consts::TAU / 16.0;
+            let radius = 8.0 * ring as f64;
+            pixels.push((
+                centre.0 + (radius * angle.cos()).round() as i64,
+                centre.1 + (radius * angle.sin()).round() as i64,
+            ));
+        }
+    }
+    pixels
+}
+
+/// A pixel near `picked` whose curve point a knot pair reaches (inside a region).
+async fn pixel_inside_a_region(
+    page: &Page<'_>,
+    app: &TestApp,
+    curve: &Value,
+    t: f64,
+    picked: (i64, i64),
+) -> (i64, i64) {
+    for pixel in around(picked, 2..=8) {
+        let target = page.to_curve(pixel).await;
+        let answer = solve(app, curve, t, target, &["knots"]).await;
+        if answer["reachable"] == json!(true) {
+            return pixel;
+        }
+    }
+    panic!("no pixel near {picked:?} lies inside a region");
+}
+
+/// A pixel whose curve point no knot pair reaches, with a nearest reachable point.
+async fn pixel_outside_every_region(
+    page: &Page<'_>,
+    app: &TestApp,
+    curve: &Value,
+    t: f64,
+    picked: (i64, i64),
+) -> (i64, i64) {
+    for pixel in around(picked, 10..=24) {
+        let (x, y) = pixel;
+        if !(20..700).contains(&x) || !(100..560).contains(&y) {
+            continue;
+        }
+        let target = page.to_curve(pixel).await;
+        let answer = solve(app, curve, t, target, &["knots"]).await;
+        if answer["reachable"] == json!(false) && answer["nearest"].is_object() {
+            return pixel;
+        }
+    }
+    panic!("no pixel near {picked:?} lies outside every region");
+}
+
+/// Clicks the curve point at `t` and waits for the pick; returns the picked parameter and
+/// the dot's pixel.
+async fn pick(page: &Page<'_>, app: &TestApp, curve: &Value, t: f64) -> (f64, (i64, i64)) {
+    let pixel = page.to_screen(point_at(app, curve, t).await).await;
+    page.click_at(pixel).await;
+    page.settle().await;
+    let picked = page
+        .picked()
+        .await
+        .unwrap_or_else(|| panic!("no pick after a click on the curve"));
+    let parameter = picked["parameter"].as_f64().unwrap();
+    assert!((parameter - t).abs() < 0.02, "picked {picked} near t = {t}");
+    (parameter, pixel)
+}
+
+fn target_dir() -> PathBuf {
+    std::env::var_os("CARGO_TARGET_DIR")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("target"))
+}
+
+/// The 95th percentile (nearest rank) of `values`.
+fn p95(values: &mut [f64]) -> f64 {
+    values.sort_by(f64::total_cmp);
+    let rank = ((0.95 * values.len() as f64).ceil() as usize).clamp(1, values.len());
+    values[rank - 1]
+}
+
+#[tokio::test]
+async fn pick_drag_into_a_region_commit_undo_redo_and_drag_outside_onto_nearest() {
+    let app = spawn_app().await;
+    let browser = Browser::start().await;
+    let page = Page::open(&browser.client, &app.address).await;
+    assert_eq!(page.script_errors().await, Vec::<String>::new());
+    let original = sample();
+    assert_eq!(numbers(&page.curve().await), numbers(&original));
+
+    // Pick: the regions of both sides appear, with the control triangles and a legend.
+    let (t, dot) = pick(&page, &app, &original, 0.42).await;
+    let drawn = page
+        .run(
+            "return [document.querySelectorAll('#scene polygon.region[data-side=left]').length, \
+             document.querySelectorAll('#scene polygon.region[data-side=right]').length, \
+             document.querySelectorAll('#scene polygon.triangle').length, \
+             document.querySelectorAll('#legend .swatch').length];",
+            vec![],
+        )
+        .await;
+    assert!(
+        drawn[0].as_u64().unwrap() > 0 && drawn[1].as_u64().unwrap() > 0,
+        "{drawn}"
+    );
+    assert_eq!(drawn[2], json!(2), "{drawn}");
+    assert!(drawn[3].as_u64().unwrap() >= 6, "{drawn}");
+
+    // Drag into a region: the committed curve is the API's smallest-deviation solution for
+    // the same request, and passes through the target.
+    let inside = pixel_inside_a_region(&page, &app, &original, t, dot).await;
+    let target = page.to_curve(inside).await;
+    let halfway = ((dot.0 + inside.0) / 2, (dot.1 + inside.1) / 2);
+    page.press_at(dot).await;
+    page.move_to(halfway).await;
+    page.move_to(inside).await;
+    page.wait_until(
+        "the preview is drawn",
+        "document.body.dataset.busy !== 'true'",
+    )
+    .await;
+    let png = browser.client.screenshot().await.expect("screenshot");
+    std::fs::create_dir_all(target_dir()).unwrap();
+    let path = target_dir().join("editor-screenshot.png");
+    std::fs::write(&path, png).unwrap();
+    println!("editor screenshot (mid-drag): {}", path.display());
+    page.release().await;
+    page.settle().await;
+    let committed = page.curve().await;
+    let answer = solve(&app, &original, t, target, &BOTH).await;
+    let solutions = answer["solutions"].as_array().unwrap();
+    let expected = apply(&original, smallest_deviation(solutions));
+    assert_eq!(
+        numbers(&committed),
+        numbers(&expected),
+        "{}",
+        page.describe().await
+    );
+    let through = point_at(&app, &committed, t).await;
+    assert!(close(through, target), "{through:?} vs target {target:?}");
+    assert!(page.data("solutions").await.parse::<usize>().unwrap() >= 1);
+
+    // Undo (Ctrl+Z) restores the original, redo (Ctrl+Shift+Z) the edit, the button undoes.
+    page.ctrl_z(false).await;
+    assert_eq!(numbers(&page.curve().await), numbers(&original));
+    page.ctrl_z(true).await;
+    assert_eq!(numbers(&page.curve().await), numbers(&committed));
+    page.click_id("undo").await;
+    page.settle().await;
+    assert_eq!(numbers(&page.curve().await), numbers(&original));
+
+    // Drag time: 60 moves, each waited for, request to redraw measured by the page.
+    let (_, dot) = pick(&page, &app, &original, 0.42).await;
+    page.press_at(dot).await;
+    let mut solved = 0;
+    for step in 1..=60 {
+        let angle = f64::from(step) * std::f64::consts::TAU / 60.0;
+        let radius = 6.0 + f64::from(step % 20);
+        let pixel = (
+            dot.0 + (radius * angle.cos()).round() as i64,
+            dot.1 + (radius * angle.sin()).round() as i64,
+        );
+        page.move_to(pixel).await;
+        page.wait_until(
+            "the move is drawn",
+            &format!(
+                "JSON.parse(document.body.dataset.dragTimings || '[]').length > {solved} \
+                 && document.body.dataset.busy !== 'true'"
+            ),
+        )
+        .await;
+        solved = serde_json::from_str::<Vec<f64>>(&page.data("dragTimings").await)
+            .unwrap()
+            .len();
+    }
+    page.release().await;
+    page.settle().await;
+    let mut timings: Vec<f64> = serde_json::from_str(&page.data("dragTimings").await).unwrap();
+    assert!(timings.len() >= 50, "{} timed moves", timings.len());
+    let count = timings.len();
+    let median = {
+        let mut sorted = timings.clone();
+        sorted.sort_by(f64::total_cmp);
+        sorted[count / 2]
+    };
+    let p95 = p95(&mut timings);
+    let report = format!(
+        "editor drag-to-redraw over {count} moves: p95 {p95:.2} ms, median {median:.2} ms \
+         (target 16 ms)\n"
+    );
+    print!("{report}");
+    std::fs::write(target_dir().join("editor-drag-timings.txt"), &report).unwrap();
+
+    // Outside every region (knots only: the control-point move reaches any target, so the
+    // API gives `nearest` only without it): the point lands on the nearest reachable point.
+    page.click_id("sample").await;
+    page.settle().await;
+    page.click_id("method-control-points").await;
+    let (t, dot) = pick(&page, &app, &original, 0.42).await;
+    let outside = pixel_outside_every_region(&page, &app, &original, t, dot).await;
+    let target = page.to_curve(outside).await;
+    page.drag(dot, &[outside]).await;
+    let committed = page.curve().await;
+    let answer = solve(&app, &original, t, target, &["knots"]).await;
+    let nearest = &answer["nearest"];
+    let nearest_point = [
+        nearest["point"][0].as_f64().unwrap(),
+        nearest["point"][1].as_f64().unwrap(),
+    ];
+    let expected = apply(
+        &original,
+        smallest_deviation(nearest["solutions"].as_array().unwrap()),
+    );
+    assert_eq!(
+        numbers(&committed),
+        numbers(&expected),
+        "{}",
+        page.describe().await
+    );
+    let through = point_at(&app, &committed, t).await;
+    assert!(
+        close(through, nearest_point),
+        "{through:?} vs nearest {nearest_point:?}"
+    );
+
+    assert_eq!(page.script_errors().await, Vec::<String>::new());
+    browser.close().await;
+}
+
+#[tokio::test]
+async fn a_single_bezier_gets_knots_inserted_and_then_drags() {
+    let app = spawn_app().await;
+    let browser = Browser::start().await;
+    let page = Page::open(&browser.client, &app.address).await;
+    page.click_id("bezier-sample").await;
+    page.settle().await;
+    let bezier = page.curve().await;
+    assert_eq!(
+        numbers(&bezier).1,
+        vec![0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0]
+    );
+
+    let (t, dot) = pick(&page, &app, &bezier, 0.5).await;
+    let message = page.data("message").await;
+    assert!(message.contains("inserted knots"), "message: {message}");
+    let refined = page.curve().await;
+    assert!(numbers(&refined).1.len() > 8, "{refined}");
+    for u in [0.1, 0.3, 0.5, 0.77, 0.95] {
+        let (before, after) = (
+            point_at(&app, &bezier, u).await,
+            point_at(&app, &refined, u).await,
+        );
+        assert!(
+            close(before, after),
+            "knot insertion changed the shape at {u}"
+        );
+    }
+
+    let inside = pixel_inside_a_region(&page, &app, &refined, t, dot).await;
+    let target = page.to_curve(inside).await;
+    page.drag(dot, &[inside]).await;
+    let committed = page.curve().await;
+    let answer = solve(&app, &refined, t, target, &BOTH).await;
+    let expected = apply(
+        &refined,
+        smallest_deviation(answer["solutions"].as_array().unwrap()),
+    );
+    assert_eq!(
+        numbers(&committed),
+        numbers(&expected),
+        "{}",
+        page.describe().await
+    );
+    assert!(close(point_at(&app, &committed, t).await, target));
+    assert_ne!(numbers(&committed), numbers(&refined));
+
+    // Undo twice: the drag, then the insertion.
+    page.ctrl_z(false).await;
+    assert_eq!(numbers(&page.curve().await), numbers(&refined));
+    page.ctrl_z(false).await;
+    assert_eq!(numbers(&page.curve().await), numbers(&bezier));
+    assert_eq!(page.script_errors().await, Vec::<String>::new());
+    browser.close().await;
+}
