@@ -25,6 +25,8 @@ let generation = 0;
 let busy = 0;
 const drag = { active: false, inFlight: false, latest: null, solved: null, release: false, base: null };
 const timings = [];
+/** The same moves split: [solve request, preview drawing request, redraw] milliseconds. */
+const phases = [];
 
 function render() {
   draw(state, elements, geometry.describeSolution);
@@ -200,6 +202,7 @@ function onPickedPoint(point) {
 function startDrag() {
   Object.assign(drag, { active: true, inFlight: false, latest: null, solved: null, release: false, base: model.currentCurve(state) });
   timings.length = 0;
+  phases.length = 0;
   document.body.dataset.dragging = "true";
   setState({ ...state, drag: { target: null, solutions: [], chosen: 0, nearest: null, preview: null, previewDrawing: null }, lastSolutions: null });
 }
@@ -237,17 +240,25 @@ async function solveLatest() {
       }
       const chosen = model.defaultChoice(solutions);
       const preview = geometry.applySolution(drag.base, solutions[chosen]);
+      const solvedAt = performance.now();
       const previewDrawing = await drawingOf(preview, { marks: false });
       if (mine !== generation) break;
+      const fetchedAt = performance.now();
       setState({
         ...state,
         drag: { target, solutions, chosen, nearest, preview, previewDrawing: previewDrawing.problem ? null : previewDrawing },
         message: nearest ? "Outside every region: the point follows the nearest reachable target." : "",
         error: previewDrawing.problem ? api.describeProblem(previewDrawing.problem) : "",
       });
-      timings.push(performance.now() - started);
-      if (timings.length > KEPT_TIMINGS) timings.shift();
+      const drawnAt = performance.now();
+      timings.push(drawnAt - started);
+      phases.push([solvedAt - started, fetchedAt - solvedAt, drawnAt - fetchedAt]);
+      if (timings.length > KEPT_TIMINGS) {
+        timings.shift();
+        phases.shift();
+      }
       document.body.dataset.dragTimings = JSON.stringify(timings);
+      document.body.dataset.dragPhases = JSON.stringify(phases);
     }
   } finally {
     drag.inFlight = false;

@@ -34,7 +34,7 @@ fn numbers(curve: &Value) -> (u64, Vec<f64>, Vec<f64>, Option<Vec<f64>>) {
         .as_array()
         .unwrap()
         .iter()
-        .flat_map(|p| list(p))
+        .flat_map(&list)
         .collect();
     let weights = curve.get("weights").filter(|w| !w.is_null()).map(list);
     (
@@ -282,10 +282,16 @@ async fn pick_drag_into_a_region_commit_undo_redo_and_drag_outside_onto_nearest(
         sorted.sort_by(f64::total_cmp);
         sorted[count / 2]
     };
-    let p95 = p95(&mut timings);
+    let p95_total = p95(&mut timings);
+    let phases: Vec<[f64; 3]> = serde_json::from_str(&page.data("dragPhases").await).unwrap();
+    let phase_p95 = |index: usize| p95(&mut phases.iter().map(|p| p[index]).collect::<Vec<_>>());
     let report = format!(
-        "editor drag-to-redraw over {count} moves: p95 {p95:.2} ms, median {median:.2} ms \
-         (target 16 ms)\n"
+        "editor drag-to-redraw over {count} moves: p95 {p95_total:.2} ms, median {median:.2} ms \
+         (target 16 ms); p95 of the parts: solve request {:.2} ms, preview drawing request \
+         {:.2} ms, redraw {:.2} ms\n",
+        phase_p95(0),
+        phase_p95(1),
+        phase_p95(2)
     );
     print!("{report}");
     std::fs::write(target_dir().join("editor-drag-timings.txt"), &report).unwrap();
