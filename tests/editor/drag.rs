@@ -384,6 +384,76 @@ async fn a_single_bezier_gets_knots_inserted_and_then_drags() {
     assert_eq!(numbers(&page.curve().await), numbers(&refined));
     page.ctrl_z(false).await;
     assert_eq!(numbers(&page.curve().await), numbers(&bezier));
+
+    // A pasted rational curve in the trimmed (openNURBS) convention: drawn as a certified
+    // polyline, exported as it is.
+    let rational = json!({"degree": 3, "control_points": [[0, 0], [1, 2], [3, 2], [4, 0], [5, 1]],
+                          "knots": [0, 0, 0, 0.5, 1, 1, 1], "weights": [1, 1, 2, 1, 1]});
+    paste(&page, &rational).await;
+    assert_eq!(numbers(&page.curve().await), numbers(&rational));
+    let polyline = page
+        .run(
+            "return document.querySelectorAll('#scene polyline.curve').length;",
+            vec![],
+        )
+        .await;
+    assert_eq!(polyline, json!(1));
+    page.click_id("export").await;
+    let exported = page
+        .run(
+            "return document.getElementById('curve-json').value;",
+            vec![],
+        )
+        .await;
+    let exported: Value = serde_json::from_str(exported.as_str().unwrap()).unwrap();
+    assert_eq!(numbers(&exported), numbers(&rational));
+
+    // A 3D curve: shown in projection, editing refused with a message.
+    let spatial = json!({"degree": 3, "control_points": [[0, 0, 0], [1, 2, 1], [3, 2, 2], [4, 0, 3]],
+                         "knots": [0, 0, 0, 0, 1, 1, 1, 1]});
+    paste(&page, &spatial).await;
+    assert!(page.data("message").await.contains("3D"));
+    let pixel = page.to_screen(point_at(&app, &spatial, 0.5).await).await;
+    page.click_at(pixel).await;
+    page.settle().await;
+    assert!(page.picked().await.is_none());
+    assert!(
+        page.data("message")
+            .await
+            .contains("does not edit 3D curves")
+    );
+
+    // Broken JSON and a curve the API refuses: readable messages, the page keeps working.
+    page.run(
+        "document.getElementById('curve-json').value = '{not json';",
+        vec![],
+    )
+    .await;
+    page.click_id("load").await;
+    assert!(page.data("error").await.contains("not JSON"));
+    paste(
+        &page,
+        &json!({"degree": 3, "control_points": [[0, 0], [1, 1]], "knots": [0, 1]}),
+    )
+    .await;
+    let error = page.data("error").await;
+    assert!(
+        error.contains("Cannot load this curve") && error.contains("/curve"),
+        "{error}"
+    );
+    assert_eq!(numbers(&page.curve().await), numbers(&spatial));
+
     assert_eq!(page.script_errors().await, Vec::<String>::new());
     browser.close().await;
+}
+
+/// Pastes `curve` into the JSON field and loads it.
+async fn paste(page: &Page<'_>, curve: &Value) {
+    page.run(
+        "document.getElementById('curve-json').value = arguments[0];",
+        vec![json!(curve.to_string())],
+    )
+    .await;
+    page.click_id("load").await;
+    page.settle().await;
 }
