@@ -43,6 +43,7 @@ async function task(work) {
   try {
     await work();
   } catch (error) {
+    console.error(error);
     setState({ ...state, error: `Unexpected error: ${error.message}` });
   } finally {
     busy -= 1;

@@ -150,7 +150,7 @@ function drawKnotStrip(state, strip) {
   const high = Math.max(...knots, ...(previewKnots ?? []));
   const span = high - low || 1;
   const x = (u) => STRIP.margin + ((u - low) / span) * (STRIP.width - 2 * STRIP.margin);
-  element("line", { x1: x(low), y1: 40, x2: x(high), y2: 40, class: "axis" }, strip);
+  element("line", { x1: x(low), y1: 48, x2: x(high), y2: 48, class: "axis" }, strip);
   const changed = new Set(chosen?.method === "knots" ? chosen.changed_knots : []);
   const offset = isTrimmed(currentCurve(state)) ? 1 : 0;
   const stack = new Map();
@@ -158,16 +158,16 @@ function drawKnotStrip(state, strip) {
     const level = stack.get(u) ?? 0;
     stack.set(u, level + 1);
     element("circle", {
-      cx: x(u), cy: 40 - 9 * level, r: 3.5,
+      cx: x(u), cy: 48 - 7 * level, r: 3,
       class: changed.has(index - offset) && !previewKnots ? "knot-tick changed" : "knot-tick",
     }, strip);
   });
   for (const [index, u] of (previewKnots ?? []).entries()) {
     if (changed.has(index - offset)) {
-      element("circle", { cx: x(u), cy: 40, r: 4.5, class: "knot-tick preview" }, strip);
+      element("circle", { cx: x(u), cy: 48, r: 4, class: "knot-tick preview" }, strip);
     }
   }
-  const label = element("text", { x: STRIP.margin, y: 14, class: "strip-label" }, strip);
+  const label = element("text", { x: STRIP.margin, y: 12, class: "strip-label" }, strip);
   label.textContent = `knots (${knots.length}): ${knots.map((u) => +u.toPrecision(4)).join(", ")}`;
 }
 
