@@ -394,8 +394,11 @@ async fn a_single_bezier_gets_knots_inserted_and_then_drags() {
     let target = page.to_curve(inside).await;
     page.press_at(dot).await;
     page.move_to(inside).await;
-    page.wait_until("the preview is drawn", "document.body.dataset.busy !== 'true'")
-        .await;
+    page.wait_until(
+        "the preview is drawn",
+        "document.body.dataset.busy !== 'true'",
+    )
+    .await;
     let png = browser.client.screenshot().await.expect("screenshot");
     std::fs::create_dir_all(target_dir()).unwrap();
     std::fs::write(target_dir().join("editor-screenshot-bezier.png"), png).unwrap();
