@@ -10,6 +10,7 @@
 mod helpers;
 
 mod editor {
+    pub mod api_key;
     pub mod browser;
     pub mod drag;
     pub mod page;

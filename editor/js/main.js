@@ -100,6 +100,17 @@ function loadCurve(curve, message = "") {
   });
 }
 
+/** Draws the committed curve again (after the API key changed, or at the start). */
+function refresh(message = "") {
+  return task(async () => {
+    const mine = ++generation;
+    const drawn = await redrawCommitted(model.cleared(state));
+    if (mine !== generation) return;
+    const refusal = geometry.editingRefusal(model.currentCurve(state));
+    setState({ ...model.cleared(state), drawing: drawn.drawing, error: drawn.error, message: drawn.error ? "" : refusal ?? message });
+  });
+}
+
 /** Parses pasted or opened text: a curve object, or an object with a `curve`. */
 function parseCurve(text) {
   let value;
@@ -376,11 +387,17 @@ function start() {
     loadText,
     exportCurve,
     setMethods,
-    setApiKey: api.setApiKey,
+    setApiKey: (key) => {
+      api.setApiKey(key);
+      return refresh();
+    },
     apiKey: api.apiKey,
   });
   window.editorTimings = timings;
-  loadCurve(structuredClone(SAMPLE_CUBIC), "The sample cubic: click near the curve to pick a point.").then(() => {
+  // A state to draw before the first answer (or when the first request is refused).
+  const first = structuredClone(SAMPLE_CUBIC);
+  setState({ ...model.initialState(first), frame: fitFrame(geometry.extent(first)) });
+  refresh("The sample cubic: click near the curve to pick a point.").then(() => {
     document.body.dataset.ready = "true";
   });
 }
