@@ -16,4 +16,5 @@ mod editor {
     pub mod page;
     pub mod picture;
     pub mod static_files;
+    pub mod steps;
 }

@@ -9,12 +9,11 @@ import * as geometry from "./geometry.js";
 import * as model from "./state.js";
 import { draw, fitFrame } from "./view.js";
 import { bind } from "./interaction.js";
+import { drawingOf } from "./drawing.js";
 import { SAMPLE_CUBIC, SINGLE_BEZIER } from "./sample.js";
 
 /** How far (pixels) from the curve a click still picks it, and from the dot a drag starts. */
 const PICK_RADIUS = 12;
-/** Samples of the fallback polyline when the certified one is refused (a jump). */
-const FALLBACK_SAMPLES = 512;
 /** Drag timings kept (milliseconds, request to redraw), newest last. */
 const KEPT_TIMINGS = 1000;
 
@@ -49,40 +48,6 @@ async function task(work) {
     busy -= 1;
     document.body.dataset.busy = busy > 0 ? "true" : "false";
   }
-}
-
-/** The drawing of `curve`: an SVG path (Bézier pieces) or a certified polyline, and the
- * curve's points at its knots. */
-async function drawingOf(curve, { marks = true } = {}) {
-  const exact = geometry.dimension(curve) === 2 && !curve.weights && curve.degree <= 3;
-  const tolerance = geometry.drawingTolerance(curve);
-  const [first, knots] = await Promise.all([
-    exact ? api.bezier(curve) : api.evaluatePolyline(curve, tolerance),
-    marks ? api.evaluateAt(curve, geometry.knotValuesInDomain(curve)) : null,
-  ]);
-  const shape = first.ok || exact ? first : await fetchSamples(curve);
-  if (!shape.ok) {
-    return { problem: shape.problem };
-  }
-  const knotPoints = knots?.ok ? knots.value.points : [];
-  if (exact && shape.value.svg_path) {
-    return { path: shape.value.svg_path, knotPoints };
-  }
-  let line = exact ? await api.evaluatePolyline(curve, tolerance) : shape;
-  if (!line.ok) {
-    // The certified polyline is refused where the curve jumps: plain samples instead.
-    line = await fetchSamples(curve);
-    if (!line.ok) {
-      return { problem: line.problem };
-    }
-  }
-  return { polyline: line.value.points, knotPoints };
-}
-
-async function fetchSamples(curve) {
-  const [lo, hi] = geometry.domain(curve);
-  const parameters = Array.from({ length: FALLBACK_SAMPLES }, (_, i) => lo + ((hi - lo) * i) / (FALLBACK_SAMPLES - 1));
-  return api.evaluateAt(curve, parameters);
 }
 
 /** Loads `curve` (after checking it with the API), fitting the view to it. */

@@ -10,6 +10,7 @@ pub mod extract;
 pub mod metrics;
 pub mod middleware;
 pub mod pointer;
+pub mod regions_media;
 pub mod regions_svg;
 pub mod routes;
 pub mod server;

@@ -3,7 +3,7 @@
 
 use crate::helpers::spawn_app_with;
 
-const FILES: [(&str, &str); 10] = [
+const FILES: [(&str, &str); 11] = [
     ("/editor/", "text/html; charset=utf-8"),
     ("/editor/editor.css", "text/css; charset=utf-8"),
     ("/editor/js/errors.js", "text/javascript; charset=utf-8"),
@@ -17,6 +17,7 @@ const FILES: [(&str, &str); 10] = [
     ),
     ("/editor/js/geometry.js", "text/javascript; charset=utf-8"),
     ("/editor/js/sample.js", "text/javascript; charset=utf-8"),
+    ("/editor/js/drawing.js", "text/javascript; charset=utf-8"),
 ];
 
 #[tokio::test]

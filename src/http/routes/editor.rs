@@ -58,6 +58,7 @@ const ASSETS: &[Asset] = assets![
     ("js/view.js", JAVASCRIPT),
     ("js/interaction.js", JAVASCRIPT),
     ("js/geometry.js", JAVASCRIPT),
+    ("js/drawing.js", JAVASCRIPT),
     ("js/sample.js", JAVASCRIPT),
 ];
 

@@ -16,7 +16,7 @@ use crate::http::error::{ApiError, FieldError, Problem};
 use crate::http::extract::ApiJson;
 use crate::http::middleware::AdmissionPermit;
 use crate::http::pointer::JsonPointer;
-use crate::http::regions_svg;
+use crate::http::regions_media;
 use crate::http::state::AppState;
 use crate::http::wire::methods::{ControlPointMembershipBody, Method, Methods};
 use crate::shape::{
@@ -603,10 +603,10 @@ pub async fn regions(
     let (limits, curve_limits) = (state.limits, state.curve_limits);
     // Up to two sides of six polygons, each up to the vertex limit.
     let work = 12 * limits.max_polygon_vertices.max(MIN_POLYGON_VERTEX_LIMIT);
-    let svg = regions_svg::prefers_svg(&headers);
+    let svg = regions_media::prefers_svg(&headers);
     compute(admission, work, move || {
         let answer = regions_request(&request, &limits, &curve_limits)?;
-        regions_svg::respond(&request, answer, &curve_limits, svg)
+        regions_media::respond(&request, answer, &curve_limits, svg)
     })
     .await
 }
