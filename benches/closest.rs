@@ -89,11 +89,21 @@ fn bench_closest(c: &mut Criterion) {
     let sixty = curve(60, &mut rng);
     let points = queries(&mut rng);
     let search = ClosestPointSearch::new(&sixty, None).unwrap();
-    // `KNOTSHAPE_CLOSEST_ONLY=1`: answer the queries once and stop, for an instruction count
-    // (`valgrind --tool=callgrind`), which the machine's load does not disturb.
-    if std::env::var_os("KNOTSHAPE_CLOSEST_ONLY").is_some() {
+    // `KNOTSHAPE_CLOSEST_ONLY=<poles>`: answer the queries once on a curve with that many
+    // control points and stop, for an instruction count (`valgrind --tool=callgrind`), which
+    // the machine's load does not disturb.
+    if let Some(poles) = std::env::var("KNOTSHAPE_CLOSEST_ONLY")
+        .ok()
+        .and_then(|v| v.parse::<usize>().ok())
+    {
+        let scaled = if poles == 60 {
+            sixty.clone()
+        } else {
+            curve(poles, &mut rng)
+        };
+        let search = ClosestPointSearch::new(&scaled, None).unwrap();
         let total: f64 = points.iter().map(|&q| search.closest(q).distance).sum();
-        eprintln!("sum of distances {total}");
+        eprintln!("{poles} poles: sum of distances {total}");
         std::process::exit(0);
     }
     let wrong = points

@@ -4,7 +4,7 @@
 #![allow(clippy::unwrap_used)]
 
 use criterion::{Criterion, black_box, criterion_group, criterion_main};
-use knotshape::shape::{ShapeQuery, SolveOptions, solve};
+use knotshape::shape::{ShapeQuery, SolveOptions, control_point_move, nearest_reachable, solve};
 use knotshape::spline::{Curve, CurveLimits};
 
 fn example_curve() -> Curve {
@@ -36,6 +36,47 @@ fn bench_solve(c: &mut Criterion) {
         assert!(solve(&query, &target, options).unwrap().reachable());
         group.bench_function(name, |b| {
             b.iter(|| solve(black_box(&query), black_box(&target), options).unwrap())
+        });
+    }
+    // Both methods, as `methods: ["knots", "control_points"]` asks: the knot pairs and the
+    // least-squares pole move, each with its deviation.
+    let options = SolveOptions {
+        measure_deviation: true,
+    };
+    let point = [target[0], target[1], 0.0];
+    group.bench_function("both_methods", |b| {
+        b.iter(|| {
+            let knots = solve(black_box(&query), black_box(&target), options).unwrap();
+            let poles = control_point_move(&curve, 0.42, black_box(point), true).unwrap();
+            (knots, poles)
+        })
+    });
+    group.finish();
+
+    // The nearest reachable point for targets outside every region: 64 targets on a circle
+    // of radius 3 around the picked point (all unreachable), one query each.
+    let picked = curve.point(0.42).unwrap();
+    let targets: Vec<[f64; 3]> = (0..64)
+        .map(|i| {
+            let angle = i as f64 * std::f64::consts::TAU / 64.0;
+            [
+                picked[0] + 3.0 * angle.cos(),
+                picked[1] + 3.0 * angle.sin(),
+                0.0,
+            ]
+        })
+        .filter(|t| !solve(&query, &t[..2], options).unwrap().reachable())
+        .collect();
+    assert!(targets.len() > 30, "{} unreachable targets", targets.len());
+    let mut group = c.benchmark_group("nearest");
+    group.throughput(criterion::Throughput::Elements(targets.len() as u64));
+    for (name, measure_deviation) in [("per_query", true), ("per_query_without_deviation", false)] {
+        group.bench_function(name, |b| {
+            b.iter(|| {
+                for &t in &targets {
+                    black_box(nearest_reachable(&query, black_box(t), measure_deviation).unwrap());
+                }
+            })
         });
     }
     group.finish();

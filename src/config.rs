@@ -13,6 +13,12 @@ use clap::{Parser, ValueEnum};
 /// Most worker threads a configuration may ask for.
 pub const MAX_WORKER_THREADS: u16 = 1024;
 
+/// Longest connection timeout a configuration may set, in milliseconds (one hour).
+pub const MAX_CONNECTION_TIMEOUT_MS: u64 = 3_600_000;
+
+/// Most open connections a configuration may allow.
+pub const MAX_CONNECTIONS: u32 = 1_048_576;
+
 /// Service configuration. Each flag can also be set by the environment variable named in its
 /// help text; a flag wins over the variable.
 #[derive(Debug, Clone, PartialEq, Parser)]
@@ -98,6 +104,53 @@ pub struct Config {
     )]
     pub drain_delay_ms: u64,
 
+    /// Milliseconds a client has to send a complete request head: from accepting the
+    /// connection, or from the first byte of a later request on a kept-alive connection.
+    /// Slower: the connection is closed.
+    #[arg(
+        long,
+        env = "KNOTSHAPE_HEADER_TIMEOUT_MS",
+        default_value_t = ConnectionLimits::DEFAULT.header_timeout_ms,
+        value_parser = clap::value_parser!(u64).range(1..=MAX_CONNECTION_TIMEOUT_MS),
+        global = true
+    )]
+    pub header_timeout_ms: u64,
+
+    /// Milliseconds a kept-alive connection may wait, idle, for its next request before it is
+    /// closed.
+    #[arg(
+        long,
+        env = "KNOTSHAPE_IDLE_TIMEOUT_MS",
+        default_value_t = ConnectionLimits::DEFAULT.idle_timeout_ms,
+        value_parser = clap::value_parser!(u64).range(1..=MAX_CONNECTION_TIMEOUT_MS),
+        global = true
+    )]
+    pub idle_timeout_ms: u64,
+
+    /// Milliseconds a request body may take to arrive after its head (slower: 408 and the
+    /// connection is closed), and a response may stay stuck because the client does not read
+    /// it (then the connection is closed). Keep it below the request timeout.
+    #[arg(
+        long,
+        env = "KNOTSHAPE_BODY_TIMEOUT_MS",
+        default_value_t = ConnectionLimits::DEFAULT.body_timeout_ms,
+        value_parser = clap::value_parser!(u64).range(1..=MAX_CONNECTION_TIMEOUT_MS),
+        global = true
+    )]
+    pub body_timeout_ms: u64,
+
+    /// Most connections open at once. At the cap, a new connection displaces the one that
+    /// has waited longest without a request in progress, or is closed at once if every
+    /// connection is serving a request. Values below the concurrency limit + 16 act as that.
+    #[arg(
+        long,
+        env = "KNOTSHAPE_MAX_CONNECTIONS",
+        default_value_t = ConnectionLimits::DEFAULT.max_connections,
+        value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_CONNECTIONS)),
+        global = true
+    )]
+    pub max_connections: u32,
+
     /// Worker threads of the async runtime that serves requests; 0: one per CPU available to
     /// the process (its cgroup's CPU limit included). Large computations run on a separate
     /// blocking pool either way.
@@ -134,6 +187,10 @@ impl Default for Config {
             concurrency_limit: 64,
             retry_after_secs: 1,
             drain_delay_ms: 0,
+            header_timeout_ms: ConnectionLimits::DEFAULT.header_timeout_ms,
+            idle_timeout_ms: ConnectionLimits::DEFAULT.idle_timeout_ms,
+            body_timeout_ms: ConnectionLimits::DEFAULT.body_timeout_ms,
+            max_connections: ConnectionLimits::DEFAULT.max_connections,
             worker_threads: 0,
             log_format: LogFormat::Human,
             log_filter: "info".to_owned(),
@@ -161,6 +218,81 @@ impl Config {
     /// The pause between readiness turning 503 and the listener closing.
     pub fn drain_delay(&self) -> Duration {
         Duration::from_millis(self.drain_delay_ms)
+    }
+
+    /// The limits applied to each connection, with the connection cap raised to
+    /// [`ConnectionLimits::min_connections`] for this concurrency limit.
+    pub fn connection_limits(&self) -> ConnectionLimits {
+        let floor = ConnectionLimits::min_connections(self.concurrency_limit);
+        ConnectionLimits {
+            header_timeout_ms: self.header_timeout_ms,
+            idle_timeout_ms: self.idle_timeout_ms,
+            body_timeout_ms: self.body_timeout_ms,
+            max_connections: self.max_connections.max(floor),
+        }
+    }
+}
+
+/// Limits of the connections themselves: how long a client may take to send, how long a
+/// connection may sit idle, and how many may be open.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ConnectionLimits {
+    /// Time to send a complete request head, in milliseconds.
+    pub header_timeout_ms: u64,
+    /// Time a kept-alive connection may wait for its next request, in milliseconds.
+    pub idle_timeout_ms: u64,
+    /// Time a request body may take to arrive, and a response may stay unread, in
+    /// milliseconds.
+    pub body_timeout_ms: u64,
+    /// Connections open at once.
+    pub max_connections: u32,
+}
+
+impl ConnectionLimits {
+    /// The defaults: 10 s for a request head (hyper's own default is 30 s, nginx's 60 s), 60 s
+    /// of keep-alive idleness (nginx: 75 s), 5 s for a body (below the 10 s request timeout, so
+    /// that a slow client gets its 408 before the timeout's 503), 4 096 connections (about
+    /// 8 KiB of read buffer each while idle).
+    pub const DEFAULT: ConnectionLimits = ConnectionLimits {
+        header_timeout_ms: 10_000,
+        idle_timeout_ms: 60_000,
+        body_timeout_ms: 5_000,
+        max_connections: 4_096,
+    };
+
+    /// Connections beyond the concurrency limit that the cap always leaves: requests in
+    /// progress hold at most `concurrency_limit` connections for long (other requests are
+    /// answered at once), so at least this many are always waiting and can be displaced by a
+    /// probe.
+    pub const PROBE_HEADROOM: u32 = 16;
+
+    /// The smallest connection cap for a concurrency limit.
+    pub fn min_connections(concurrency_limit: usize) -> u32 {
+        u32::try_from(concurrency_limit)
+            .unwrap_or(u32::MAX)
+            .saturating_add(Self::PROBE_HEADROOM)
+            .min(MAX_CONNECTIONS)
+    }
+
+    /// Time to send a complete request head.
+    pub fn header_timeout(&self) -> Duration {
+        Duration::from_millis(self.header_timeout_ms)
+    }
+
+    /// Time a kept-alive connection may wait for its next request.
+    pub fn idle_timeout(&self) -> Duration {
+        Duration::from_millis(self.idle_timeout_ms)
+    }
+
+    /// Time a request body may take, and a response may stay unread.
+    pub fn body_timeout(&self) -> Duration {
+        Duration::from_millis(self.body_timeout_ms)
+    }
+}
+
+impl Default for ConnectionLimits {
+    fn default() -> Self {
+        ConnectionLimits::DEFAULT
     }
 }
 
@@ -279,6 +411,63 @@ mod tests {
         assert_eq!(parse("0").unwrap().worker_threads, 0);
         assert!(parse("1025").is_err());
         assert!(parse("-1").is_err());
+    }
+
+    #[test]
+    fn connection_timeouts_and_the_cap_are_bounded() {
+        for flag in [
+            "--header-timeout-ms",
+            "--idle-timeout-ms",
+            "--body-timeout-ms",
+        ] {
+            let parse = |value: &str| Config::try_parse_from(["knotshape", flag, value]);
+            assert!(parse("1").is_ok(), "{flag} 1");
+            assert!(parse("3600000").is_ok(), "{flag} 3600000");
+            assert!(parse("0").is_err(), "{flag} 0 would disable the timeout");
+            assert!(parse("3600001").is_err(), "{flag} above an hour");
+            assert!(parse("-5").is_err(), "{flag} -5");
+        }
+        let parse = |value: &str| Config::try_parse_from(["knotshape", "--max-connections", value]);
+        assert_eq!(parse("5000").unwrap().max_connections, 5000);
+        assert!(parse("0").is_err());
+        assert!(parse("1048577").is_err());
+        let parsed = Config::try_parse_from([
+            "knotshape",
+            "--header-timeout-ms",
+            "250",
+            "--idle-timeout-ms",
+            "750",
+            "--body-timeout-ms",
+            "500",
+        ])
+        .unwrap();
+        let limits = parsed.connection_limits();
+        assert_eq!(limits.header_timeout(), Duration::from_millis(250));
+        assert_eq!(limits.idle_timeout(), Duration::from_millis(750));
+        assert_eq!(limits.body_timeout(), Duration::from_millis(500));
+    }
+
+    #[test]
+    fn the_connection_cap_leaves_room_above_the_concurrency_limit() {
+        let config = Config {
+            max_connections: 10,
+            concurrency_limit: 64,
+            ..Config::default()
+        };
+        assert_eq!(config.connection_limits().max_connections, 64 + 16);
+        let config = Config {
+            max_connections: 1000,
+            ..config
+        };
+        assert_eq!(config.connection_limits().max_connections, 1000);
+        assert_eq!(
+            ConnectionLimits::min_connections(usize::MAX),
+            MAX_CONNECTIONS
+        );
+        let defaults = Config::default().connection_limits();
+        assert!(defaults.header_timeout() <= Duration::from_secs(10));
+        assert!(defaults.idle_timeout() <= Duration::from_secs(60));
+        assert!(defaults.body_timeout() < Config::default().request_timeout());
     }
 
     #[test]

@@ -2,6 +2,7 @@
 #![cfg_attr(test, allow(clippy::unwrap_used))]
 
 pub mod config;
+pub mod fuzzing;
 pub mod http;
 pub mod shape;
 pub mod spline;

@@ -163,8 +163,15 @@ fn config_from_env(vars: &[(String, String)]) -> Config {
 /// The longest time from SIGTERM to exit: the drain delay (readiness 503,
 /// listener still open), then the slowest in-flight request, which the
 /// request timeout bounds.
+/// The longest shutdown: the drain delay, then a connection accepted just before the listener
+/// closed may take the header timeout to send its head, the request timeout to be answered and
+/// the body timeout (the send stall) to take its answer.
 fn drain_timeout(config: &Config) -> Duration {
-    config.drain_delay() + config.request_timeout()
+    let connections = config.connection_limits();
+    config.drain_delay()
+        + connections.header_timeout()
+        + config.request_timeout()
+        + connections.body_timeout()
 }
 
 // ---------------------------------------------------------------- Dockerfile --

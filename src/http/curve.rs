@@ -53,6 +53,27 @@ impl CurveBody {
         .map_err(|error| ApiError::Invalid(vec![curve_field_error(&error, &JsonPointer::from(at))]))
     }
 
+    /// [`CurveBody::parse`] for a request that checks more fields: the curve's errors are
+    /// added to `errors` (so one answer lists them all), and `None` stands for them.
+    pub fn parse_collecting(
+        &self,
+        limits: &CurveLimits,
+        at: &str,
+        errors: &mut Vec<FieldError>,
+    ) -> Option<Curve> {
+        match self.parse(limits, at) {
+            Ok(curve) => Some(curve),
+            Err(ApiError::Invalid(curve_errors)) => {
+                errors.extend(curve_errors);
+                None
+            }
+            Err(other) => {
+                errors.push(FieldError::new(at, other.to_string()));
+                None
+            }
+        }
+    }
+
     /// The wire form of a core curve, knots in the curve's (the caller's) convention.
     pub fn from_curve(curve: &Curve) -> Self {
         let dimension = curve.dimension();

@@ -1,5 +1,6 @@
 //! Prometheus metrics of the HTTP edge: requests by matched route, method and status, a latency
-//! histogram, and the number of requests in flight.
+//! histogram, the number of requests in flight, open connections and connection closes by
+//! reason.
 //!
 //! Labels use the *matched* route (`/v1/curves/evaluate`, or `unmatched`) and a closed set of
 //! method names, so no client can blow up the label cardinality.
@@ -41,6 +42,65 @@ pub struct LatencyLabels {
     pub route: String,
 }
 
+/// Why a connection ended (the `reason` label of `knotshape_http_connections_closed_total`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum CloseReason {
+    /// The client closed it, or a response said `Connection: close`.
+    Completed,
+    /// The request head did not arrive in time.
+    HeaderTimeout,
+    /// Idle between requests for longer than the idle timeout.
+    IdleTimeout,
+    /// The request body did not arrive in time (answered with 408).
+    BodyTimeout,
+    /// The client did not read its response in time.
+    SendTimeout,
+    /// Displaced at the connection cap by a new connection.
+    Evicted,
+    /// Refused at once: the cap was reached and every connection was serving a request.
+    OverCapacity,
+    /// Closed while idle during shutdown.
+    Shutdown,
+    /// A protocol or socket error.
+    Error,
+}
+
+impl CloseReason {
+    /// Every reason, in the order of their counters.
+    pub const ALL: [CloseReason; 9] = [
+        CloseReason::Completed,
+        CloseReason::HeaderTimeout,
+        CloseReason::IdleTimeout,
+        CloseReason::BodyTimeout,
+        CloseReason::SendTimeout,
+        CloseReason::Evicted,
+        CloseReason::OverCapacity,
+        CloseReason::Shutdown,
+        CloseReason::Error,
+    ];
+
+    /// The label value.
+    pub fn label(self) -> &'static str {
+        match self {
+            CloseReason::Completed => "completed",
+            CloseReason::HeaderTimeout => "header_timeout",
+            CloseReason::IdleTimeout => "idle_timeout",
+            CloseReason::BodyTimeout => "body_timeout",
+            CloseReason::SendTimeout => "send_timeout",
+            CloseReason::Evicted => "evicted",
+            CloseReason::OverCapacity => "over_capacity",
+            CloseReason::Shutdown => "shutdown",
+            CloseReason::Error => "error",
+        }
+    }
+}
+
+/// Labels of the connection-close counter.
+#[derive(Debug, Clone, Hash, PartialEq, Eq, EncodeLabelSet)]
+struct CloseLabels {
+    reason: &'static str,
+}
+
 /// The service's metrics and the registry they are exported from. Cheap to clone.
 #[derive(Clone)]
 pub struct Metrics {
@@ -52,6 +112,10 @@ struct MetricsInner {
     requests: Family<RequestLabels, Counter>,
     latency: Family<LatencyLabels, Histogram>,
     in_flight: Gauge,
+    connections_open: Gauge,
+    /// One counter per [`CloseReason::ALL`] entry, created up front so that counting a close
+    /// needs no lookup.
+    connections_closed: [Counter; CloseReason::ALL.len()],
 }
 
 impl std::fmt::Debug for Metrics {
@@ -91,12 +155,33 @@ impl Metrics {
             "HTTP requests being served now",
             in_flight.clone(),
         );
+        let connections_open = Gauge::default();
+        registry.register(
+            "http_connections_open",
+            "TCP connections open now",
+            connections_open.clone(),
+        );
+        let closed = Family::<CloseLabels, Counter>::default();
+        registry.register(
+            "http_connections_closed",
+            "TCP connections ended (or refused at the cap), by reason",
+            closed.clone(),
+        );
+        let connections_closed = CloseReason::ALL.map(|reason| {
+            closed
+                .get_or_create(&CloseLabels {
+                    reason: reason.label(),
+                })
+                .clone()
+        });
         Metrics {
             inner: Arc::new(MetricsInner {
                 registry,
                 requests,
                 latency,
                 in_flight,
+                connections_open,
+                connections_closed,
             }),
         }
     }
@@ -107,6 +192,23 @@ impl Metrics {
         InFlightGuard {
             gauge: self.inner.in_flight.clone(),
         }
+    }
+
+    /// Counts a connection as open; the guard counts it as closed when dropped.
+    pub fn open_connection(&self) -> OpenConnectionGuard {
+        self.inner.connections_open.inc();
+        OpenConnectionGuard {
+            gauge: self.inner.connections_open.clone(),
+        }
+    }
+
+    /// Counts a connection that ended (or was refused) for `reason`.
+    pub fn record_close(&self, reason: CloseReason) {
+        let index = CloseReason::ALL
+            .iter()
+            .position(|r| *r == reason)
+            .unwrap_or(CloseReason::ALL.len() - 1);
+        self.inner.connections_closed[index].inc();
     }
 
     /// Records a finished request.
@@ -145,6 +247,18 @@ pub struct InFlightGuard {
 }
 
 impl Drop for InFlightGuard {
+    fn drop(&mut self) {
+        self.gauge.dec();
+    }
+}
+
+/// Decrements the open-connections gauge when dropped.
+#[derive(Debug)]
+pub struct OpenConnectionGuard {
+    gauge: Gauge,
+}
+
+impl Drop for OpenConnectionGuard {
     fn drop(&mut self) {
         self.gauge.dec();
     }
@@ -198,5 +312,39 @@ mod tests {
         assert!(text.contains(r#"method="other",route="unmatched",status="405""#));
         assert!(text.contains("knotshape_http_request_duration_seconds_bucket"));
         assert!(text.contains("knotshape_http_requests_in_flight 0"));
+    }
+
+    #[test]
+    fn connections_are_counted_open_and_closed_by_reason() {
+        let metrics = Metrics::new();
+        let text = metrics.encode();
+        for reason in CloseReason::ALL {
+            let line = format!(
+                r#"knotshape_http_connections_closed_total{{reason="{}"}} 0"#,
+                reason.label()
+            );
+            assert!(text.contains(&line), "{line} missing from\n{text}");
+        }
+        let first = metrics.open_connection();
+        let second = metrics.open_connection();
+        assert!(
+            metrics
+                .encode()
+                .contains("knotshape_http_connections_open 2")
+        );
+        drop(first);
+        metrics.record_close(CloseReason::HeaderTimeout);
+        metrics.record_close(CloseReason::HeaderTimeout);
+        metrics.record_close(CloseReason::OverCapacity);
+        let text = metrics.encode();
+        assert!(text.contains("knotshape_http_connections_open 1"));
+        assert!(
+            text.contains(r#"knotshape_http_connections_closed_total{reason="header_timeout"} 2"#)
+        );
+        assert!(
+            text.contains(r#"knotshape_http_connections_closed_total{reason="over_capacity"} 1"#)
+        );
+        assert!(text.contains(r#"knotshape_http_connections_closed_total{reason="completed"} 0"#));
+        drop(second);
     }
 }

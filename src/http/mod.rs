@@ -50,8 +50,12 @@ pub fn app(config: &Config) -> Router {
 /// (`/readyz` and `/v1` answer 503 once it starts draining).
 pub fn app_with_readiness(config: &Config, readiness: Readiness) -> Router {
     let openapi_json: Arc<str> = openapi_json().into();
-    let state = AppState::new(config, readiness, openapi_json);
+    app_with_state(config, AppState::new(config, readiness, openapi_json))
+}
 
+/// The router serving every route with `state`, which its creator shares (the server reports
+/// connection metrics through `state.metrics`).
+pub fn app_with_state(config: &Config, state: AppState) -> Router {
     let v1 = v1_routes().route_layer(middleware::GuardV1Layer::new(state.clone()));
     let (router, _) = OpenApiRouter::with_openapi(ApiDoc::openapi())
         .merge(v1)
@@ -191,6 +195,10 @@ impl Modify for SecurityAndCommonErrors {
             (
                 "401",
                 "An API key is configured and the request lacks it or has a wrong one",
+            ),
+            (
+                "408",
+                "The body arrived slower than the configured body timeout; the connection is closed",
             ),
             ("413", "The body exceeds the configured limit"),
             ("415", "The body is not sent as application/json"),

@@ -9,7 +9,8 @@ use super::error::ApiError;
 use super::extract::ApiJson;
 use super::pointer::JsonPointer;
 use super::regions_svg::{NonFinite, Picture, SVG, render};
-use super::routes::shape::{RegionsRequest, RegionsResponse};
+use super::wire::shape_answer::RegionsResponse;
+use super::wire::shape_request::RegionsRequest;
 use crate::spline::CurveLimits;
 
 /// Whether the `Accept` header prefers the SVG picture over JSON: `image/svg+xml` with a

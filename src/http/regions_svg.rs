@@ -8,8 +8,9 @@
 //! double, and mapped onto the panel by the group's `transform`, so a client reading the
 //! picture gets exactly the JSON numbers.
 
-use super::routes::shape::{CandidateSide, Region, RegionsResponse};
 use super::svg_path::number;
+use super::wire::shape_answer::RegionsResponse;
+use super::wire::shape_request::{CandidateSide, Region};
 
 /// The picture's media type.
 pub const SVG: &str = "image/svg+xml";

@@ -36,8 +36,13 @@ const INITIAL_PIECES: usize = 8;
 /// Bisections per edge at most.
 const MAX_SPLITS_PER_EDGE: usize = 64;
 
-/// Golden-section steps at most per refined bracket (the bracket shrinks to `0.618^60`).
+/// Golden-section steps at most per refined segment (the bracket shrinks to `0.618^60`).
 const GOLDEN_STEPS: usize = 60;
+
+/// Golden-section search stops at a bracket this wide (in edge parameter, `[0, 1]`): every
+/// place of an edge is a boundary point, and at a minimum the distance changes only with the
+/// square of the step.
+const GOLDEN_WIDTH: f64 = 1e-9;
 
 /// A point of an open boundary (a knot moved onto a clamped end, which the keep-domain rule
 /// forbids) is pulled into the domain, by the first of these fractions of the unit square
@@ -54,6 +59,30 @@ pub struct NearestOutcome {
     /// Every solution that reaches `point`, sorted by `max_deviation` (their `residual` is
     /// measured from `point`).
     pub solutions: Vec<Solution>,
+}
+
+/// A piece of an edge between two samples, with a lower bound of the distance on it.
+#[derive(Debug, Clone, Copy)]
+struct Segment {
+    edge: usize,
+    from: f64,
+    to: f64,
+    bound: f64,
+}
+
+/// Distance from `point` to the segment `from`–`to`.
+fn distance_to_segment(point: Point, from: Point, to: Point) -> f64 {
+    let direction = sub(to, from);
+    let length_sq = dot(direction, direction);
+    let along = if length_sq > 0.0 {
+        (dot(sub(point, from), direction) / length_sq).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    distance(
+        point,
+        std::array::from_fn(|c| from[c] + along * direction[c]),
+    )
 }
 
 /// One side and pair's search domain: the local knots and which unknowns are frozen.
@@ -153,11 +182,53 @@ impl EdgeSearch<'_> {
         }
     }
 
-    /// Searches the four edges, improving `best`.
-    fn search(&self, tolerance: f64, best: &mut Option<Found>) {
+    /// Samples the four edges (adaptively, to `tolerance`): the best sampled place, and the
+    /// segments between consecutive samples with a lower bound of the distance on each (the
+    /// distance to the chord less `tolerance`, the image's allowed gap from its chord).
+    fn sample(&self, tolerance: f64) -> (Option<Found>, Vec<Segment>) {
+        let mut best = None;
+        let mut segments = Vec::new();
+        let mut samples: Vec<(f64, Point)> = Vec::with_capacity(INITIAL_PIECES + 1);
         for edge in 0..4 {
-            self.search_edge(edge, tolerance, best);
+            let at = |s: f64| self.point_at(Self::edge_point(edge, s));
+            samples.clear();
+            samples.push((0.0, at(0.0)));
+            let mut splits = MAX_SPLITS_PER_EDGE;
+            for piece in 1..=INITIAL_PIECES {
+                let s1 = piece as f64 / INITIAL_PIECES as f64;
+                let end = (s1, at(s1));
+                let Some(&start) = samples.last() else { break };
+                self.refine(&at, start, end, tolerance, &mut splits, &mut samples, 0);
+            }
+            for &(s, point) in &samples {
+                self.offer(
+                    Self::edge_point(edge, s),
+                    distance(point, self.target),
+                    &mut best,
+                );
+            }
+            for pair in samples.windows(2) {
+                let chord = distance_to_segment(self.target, pair[0].1, pair[1].1);
+                segments.push(Segment {
+                    edge,
+                    from: pair[0].0,
+                    to: pair[1].0,
+                    bound: chord - tolerance,
+                });
+            }
         }
+        (best, segments)
+    }
+
+    /// The least distance on `segment` (golden-section search), offered to `best`.
+    fn refine_segment(&self, segment: &Segment, best: &mut Option<Found>) {
+        let at = |s: f64| self.point_at(Self::edge_point(segment.edge, s));
+        let s = golden_minimum(|s| distance(at(s), self.target), segment.from, segment.to);
+        self.offer(
+            Self::edge_point(segment.edge, s),
+            distance(at(s), self.target),
+            best,
+        );
     }
 
     fn offer(&self, z: [f64; 2], distance: f64, best: &mut Option<Found>) {
@@ -171,48 +242,6 @@ impl EdgeSearch<'_> {
                 z,
                 frozen: self.frozen,
             });
-        }
-    }
-
-    fn search_edge(&self, edge: usize, tolerance: f64, best: &mut Option<Found>) {
-        let at = |s: f64| self.point_at(Self::edge_point(edge, s));
-        // Adaptive samples: (s, image point).
-        let mut samples: Vec<(f64, Point)> = Vec::with_capacity(INITIAL_PIECES + 1);
-        samples.push((0.0, at(0.0)));
-        let mut splits = MAX_SPLITS_PER_EDGE;
-        for piece in 1..=INITIAL_PIECES {
-            let s1 = piece as f64 / INITIAL_PIECES as f64;
-            let end = (s1, at(s1));
-            let Some(&start) = samples.last() else { break };
-            self.refine(&at, start, end, tolerance, &mut splits, &mut samples, 0);
-        }
-        let distances: Vec<f64> = samples
-            .iter()
-            .map(|&(_, point)| distance(point, self.target))
-            .collect();
-        for (i, &(s, _)) in samples.iter().enumerate() {
-            self.offer(Self::edge_point(edge, s), distances[i], best);
-        }
-        let best_distance = best.map_or(f64::INFINITY, |found| found.distance);
-        for i in 0..samples.len() {
-            let left = if i > 0 {
-                distances[i - 1]
-            } else {
-                f64::INFINITY
-            };
-            let right = distances.get(i + 1).copied().unwrap_or(f64::INFINITY);
-            let local_minimum = distances[i] <= left && distances[i] <= right;
-            if !local_minimum || distances[i] - 2.0 * tolerance > best_distance {
-                continue;
-            }
-            let lo = samples[i.saturating_sub(1)].0;
-            let hi = samples[(i + 1).min(samples.len() - 1)].0;
-            let s = golden_minimum(|s| distance(at(s), self.target), lo, hi);
-            self.offer(
-                Self::edge_point(edge, s),
-                distance(at(s), self.target),
-                best,
-            );
         }
     }
 
@@ -250,7 +279,7 @@ fn golden_minimum(f: impl Fn(f64) -> f64, lo: f64, hi: f64) -> f64 {
     let mut y = a + RATIO * (b - a);
     let (mut fx, mut fy) = (f(x), f(y));
     for _ in 0..GOLDEN_STEPS {
-        if b - a <= 4.0 * f64::EPSILON * (a.abs() + b.abs()).max(f64::MIN_POSITIVE) {
+        if b - a <= GOLDEN_WIDTH {
             break;
         }
         if fx < fy {
@@ -290,6 +319,7 @@ pub fn nearest_reachable(
     let t = query.parameter;
     let frozen_index = |i: usize| query.keep_domain && (i == 3 || i == n + 1);
     let mut found: Vec<Found> = Vec::new();
+    let mut searches: Vec<(EdgeSearch, Option<Found>, Vec<Segment>)> = Vec::new();
     let mut projections: Vec<(f64, Solution)> = Vec::new();
     let mut buffer = knots.to_vec();
     for &side in query.side.sides() {
@@ -339,10 +369,27 @@ pub fn nearest_reachable(
                 ],
                 target,
             };
-            let mut best = None;
-            search.search(tolerance, &mut best);
-            found.extend(best);
+            let (best, segments) = search.sample(tolerance);
+            searches.push((search, best, segments));
         }
+    }
+    // Refine, most promising segment first, only where the bound may beat the best so far
+    // (per pair, and over all pairs).
+    let mut overall = searches
+        .iter()
+        .filter_map(|(_, best, _)| best.map(|found| found.distance))
+        .fold(f64::INFINITY, f64::min);
+    for (search, best, segments) in &mut searches {
+        segments.sort_by(|p, q| p.bound.total_cmp(&q.bound));
+        for segment in segments.iter() {
+            let pair_best = best.map_or(f64::INFINITY, |found| found.distance);
+            if segment.bound >= pair_best.min(overall) {
+                break;
+            }
+            search.refine_segment(segment, best);
+            overall = overall.min(best.map_or(f64::INFINITY, |found| found.distance));
+        }
+        found.extend(*best);
     }
     found.sort_by(|p, q| p.distance.total_cmp(&q.distance));
     let best_projection = projections.into_iter().min_by(|p, q| p.0.total_cmp(&q.0));

@@ -1,6 +1,7 @@
 //! Every request body in `examples/` (the README's curl examples) posted to the real server:
 //! a 200 with a sensible body. A file `<group>-<endpoint>[-variant].json` goes to
-//! `/v1/<group>/<endpoint>`.
+//! `/v1/<group>/<endpoint>` (the longest documented route that the name starts with, so
+//! `curves-closest-point.json` goes to `/v1/curves/closest-point`).
 
 use serde_json::Value;
 
@@ -45,6 +46,15 @@ fn check_sensible(path: &str, request: &Value, body: &Value) {
                 }
             }
         }
+        "/v1/shape/solve" if request["nearest"] == true => {
+            assert_eq!(
+                body["reachable"], false,
+                "the nearest example's target is unreachable"
+            );
+            let nearest = &body["nearest"];
+            assert!(nearest["distance"].as_f64().unwrap() > 0.0);
+            assert!(!nearest["solutions"].as_array().unwrap().is_empty());
+        }
         "/v1/shape/solve" => {
             let solutions = body["solutions"].as_array().unwrap();
             assert_eq!(body["reachable"], true, "examples show reachable targets");
@@ -52,6 +62,24 @@ fn check_sensible(path: &str, request: &Value, body: &Value) {
             for solution in solutions {
                 assert!(solution["residual"].as_f64().unwrap() < 1e-9, "{solution}");
             }
+        }
+        "/v1/curves/closest-point" => {
+            let results = body["results"].as_array().unwrap();
+            assert_eq!(results.len(), request["points"].as_array().unwrap().len());
+            assert!(
+                results
+                    .iter()
+                    .all(|r| r["distance"].as_f64().unwrap() >= 0.0)
+            );
+        }
+        "/v1/curves/insert-knots" => {
+            let before = request["curve"]["control_points"].as_array().unwrap().len();
+            let after = body["curve"]["control_points"].as_array().unwrap().len();
+            assert!(after > before, "knots were inserted");
+        }
+        "/v1/curves/bezier" => {
+            assert!(!body["segments"].as_array().unwrap().is_empty());
+            assert!(body["svg_path"].as_str().unwrap().starts_with('M'));
         }
         other => panic!("no check for {other}"),
     }
@@ -67,11 +95,25 @@ async fn every_example_request_gets_a_sensible_200() {
         .filter(|path| path.extension().is_some_and(|e| e == "json"))
         .collect();
     files.sort();
+    let document = knotshape::openapi();
+    let routes: Vec<&String> = document
+        .paths
+        .paths
+        .keys()
+        .filter(|path| path.starts_with("/v1/"))
+        .collect();
     let mut endpoints = std::collections::BTreeSet::new();
     for file in &files {
         let name = file.file_stem().unwrap().to_str().unwrap();
-        let mut parts = name.split('-');
-        let path = format!("/v1/{}/{}", parts.next().unwrap(), parts.next().unwrap());
+        let path = routes
+            .iter()
+            .filter(|route| {
+                let stem = route.trim_start_matches("/v1/").replace('/', "-");
+                name == stem || name.starts_with(&format!("{stem}-"))
+            })
+            .max_by_key(|route| route.len())
+            .unwrap_or_else(|| panic!("{name}: no route matches the file name"))
+            .to_string();
         let request: Value = serde_json::from_str(&std::fs::read_to_string(file).unwrap()).unwrap();
         let (status, body) = app.post_json(&path, &request).await;
         assert_eq!(status, 200, "{name}: {body}");
@@ -80,7 +122,7 @@ async fn every_example_request_gets_a_sensible_200() {
     }
     assert_eq!(
         endpoints.len(),
-        5,
+        8,
         "one example or more per endpoint: {endpoints:?}"
     );
 }

@@ -3,7 +3,9 @@
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
 mod auth;
+mod binary;
 mod closest;
+mod connections;
 mod curves;
 mod edit;
 mod errors;

@@ -522,7 +522,7 @@ async fn polygon_size_is_bounded_by_the_vertex_limit() {
 /// with a `reason`) and unreachable targets.
 #[tokio::test]
 async fn solve_answers_round_trip_through_the_typed_response() {
-    use knotshape::http::routes::shape::SolveResponse;
+    use knotshape::http::wire::shape_answer::SolveResponse;
     let app = spawn_app().await;
     let mut rng = Lcg(31);
     let mut requests = Vec::new();

@@ -60,14 +60,9 @@ fn closest_point_request(
     curve_limits: &CurveLimits,
 ) -> Result<ClosestPointResponse, ApiError> {
     let mut errors = Vec::new();
-    let curve = match request.curve.parse(curve_limits, "/curve") {
-        Ok(curve) => Some(curve),
-        Err(ApiError::Invalid(curve_errors)) => {
-            errors.extend(curve_errors);
-            None
-        }
-        Err(other) => return Err(other),
-    };
+    let curve = request
+        .curve
+        .parse_collecting(curve_limits, "/curve", &mut errors);
     let count = request.points.len();
     if count == 0 {
         errors.push(FieldError::new("/points", "give at least one query point"));

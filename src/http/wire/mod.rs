@@ -2,4 +2,8 @@
 //! from and to core types; handlers live in [`super::routes`].
 
 pub mod closest;
+pub mod curves;
 pub mod methods;
+pub mod shape_answer;
+pub mod shape_request;
+pub mod toolkit;

@@ -1,0 +1,304 @@
+//! The check shared by the fuzz target `structured` (`fuzz/`) and the corpus replay test: bytes
+//! become a valid random curve (degree 1–5, 2D or 3D, rational or not, clamped or not,
+//! repeated knots) through `arbitrary`, then go through the core's operations, each answer
+//! checked against a property that must hold, computed another way:
+//!
+//! * evaluation: every point is finite;
+//! * closest point: the answer is a curve point in the range, and no sampled parameter is
+//!   closer;
+//! * knot insertion: the refined curve is the same curve (sampled);
+//! * Bézier pieces: each piece starts and ends on the curve;
+//! * tessellation: every vertex is a curve point, parameters increasing, ends included;
+//! * cubic curves, shape editing: every knot or control-point solution lands on its target
+//!   (re-evaluated by the spline core), `nearest` solutions land on the nearest point, region
+//!   polygons are finite.
+
+use arbitrary::{Arbitrary, Unstructured};
+
+use crate::shape::{
+    self, KnotPair, PolygonOptions, ShapeQuery, SideChoice, SolveOptions, nearest_reachable,
+};
+use crate::spline::vector::{Point, distance};
+use crate::spline::{ClosestPointSearch, Curve, CurveLimits};
+
+/// Largest number of control points drawn.
+const MAX_EXTRA_POINTS: usize = 12;
+
+/// Points per answer compared with the curve.
+const SAMPLES: usize = 33;
+
+/// A random curve and the operations' arguments, drawn from the fuzzer's bytes.
+#[derive(Debug, Clone)]
+pub struct Case {
+    /// The curve (always valid).
+    pub curve: Curve,
+    /// Fractions of the domain in `[0, 1]`: parameters for the operations.
+    pub fractions: [f64; 4],
+    /// A query point near the curve's box.
+    pub query: Point,
+    /// Tolerance of the tessellation, relative to the curve's size.
+    pub relative_tolerance: f64,
+}
+
+impl Case {
+    /// Draws a case, or `None` when the bytes run out or the drawn data are not a curve.
+    pub fn draw(data: &[u8]) -> Option<Case> {
+        let mut u = Unstructured::new(data);
+        let degree = 1 + usize::from(u8::arbitrary(&mut u).ok()? % 5);
+        let three_d = bool::arbitrary(&mut u).ok()?;
+        let rational = bool::arbitrary(&mut u).ok()?;
+        let clamped = bool::arbitrary(&mut u).ok()?;
+        let count = degree + 1 + usize::from(u8::arbitrary(&mut u).ok()?) % MAX_EXTRA_POINTS;
+        let dimension = if three_d { 3 } else { 2 };
+        let mut points = Vec::with_capacity(count);
+        for _ in 0..count {
+            let point: Vec<f64> = (0..dimension)
+                .map(|_| i16::arbitrary(&mut u).map(|v| f64::from(v) / 256.0))
+                .collect::<Result<_, _>>()
+                .ok()?;
+            points.push(point);
+        }
+        let weights: Option<Vec<f64>> = if rational {
+            Some(
+                (0..count)
+                    .map(|_| u8::arbitrary(&mut u).map(|v| 0.05 + f64::from(v) / 16.0))
+                    .collect::<Result<_, _>>()
+                    .ok()?,
+            )
+        } else {
+            None
+        };
+        let knot_count = count + degree + 1;
+        let mut knots = Vec::with_capacity(knot_count);
+        let mut value = f64::from(i8::arbitrary(&mut u).ok()?) / 16.0;
+        let mut run = 0;
+        for i in 0..knot_count {
+            let clamped_end = clamped && (i <= degree || i >= count);
+            let step = u8::arbitrary(&mut u).ok()?;
+            // A repeat now and then (never more than the degree in a row inside).
+            let repeat = clamped_end || (step % 5 == 0 && run < degree);
+            if i > 0 && !repeat {
+                value += 0.01 + f64::from(step) / 64.0;
+            }
+            run = if repeat && i > 0 { run + 1 } else { 0 };
+            knots.push(value);
+        }
+        let curve = Curve::new(
+            degree,
+            &points,
+            &knots,
+            weights.as_deref(),
+            &CurveLimits::default(),
+        )
+        .ok()?;
+        let mut fractions = [0.0; 4];
+        for fraction in &mut fractions {
+            *fraction = f64::from(u16::arbitrary(&mut u).ok()?) / f64::from(u16::MAX);
+        }
+        let mut query = [0.0; 3];
+        for coordinate in query.iter_mut().take(dimension) {
+            *coordinate = f64::from(i16::arbitrary(&mut u).ok()?) / 200.0;
+        }
+        let relative_tolerance = 1e-3 + f64::from(u8::arbitrary(&mut u).ok()?) / 2560.0;
+        Some(Case {
+            curve,
+            fractions,
+            query,
+            relative_tolerance,
+        })
+    }
+
+    fn parameter(&self, index: usize) -> f64 {
+        let (lo, hi) = self.curve.domain();
+        (lo + self.fractions[index] * (hi - lo)).min(hi)
+    }
+
+    /// The largest coordinate magnitude (at least 1): the scale of rounding errors.
+    fn size(&self) -> f64 {
+        self.curve
+            .control_points()
+            .iter()
+            .flatten()
+            .fold(1.0f64, |m, v| m.max(v.abs()))
+    }
+}
+
+/// Runs every operation on the case drawn from `data`; `Err` names the broken property.
+pub fn check(data: &[u8]) -> Result<(), String> {
+    let Some(case) = Case::draw(data) else {
+        return Ok(());
+    };
+    check_case(&case)
+}
+
+/// [`check`] on a drawn case.
+pub fn check_case(case: &Case) -> Result<(), String> {
+    let curve = &case.curve;
+    let size = case.size();
+    let (lo, hi) = curve.domain();
+    let samples: Vec<f64> = (0..SAMPLES)
+        .map(|i| (lo + (hi - lo) * i as f64 / (SAMPLES - 1) as f64).min(hi))
+        .collect();
+    for &u in &samples {
+        let point = curve.point_unchecked(u);
+        if !point.iter().all(|v| v.is_finite()) {
+            return Err(format!("evaluation: non-finite point at {u}"));
+        }
+    }
+    check_closest(case, &samples, size)?;
+    check_insertion(case, &samples, size)?;
+    check_pieces(case, size)?;
+    check_tessellation(case, size)?;
+    if curve.degree() == 3 {
+        check_shape(case, size)?;
+    }
+    Ok(())
+}
+
+fn check_closest(case: &Case, samples: &[f64], size: f64) -> Result<(), String> {
+    let curve = &case.curve;
+    let (a, b) = (case.parameter(0), case.parameter(1));
+    let range = (a.min(b), a.max(b));
+    let search = ClosestPointSearch::new(curve, Some(range)).map_err(|e| e.to_string())?;
+    let found = search.closest(case.query);
+    if !(range.0 <= found.parameter && found.parameter <= range.1) {
+        return Err(format!(
+            "closest point: {} outside {range:?}",
+            found.parameter
+        ));
+    }
+    let truth = curve.point_unchecked(found.parameter);
+    if distance(truth, found.point) > 1e-9 * size {
+        return Err("closest point: the point is not the curve's at its parameter".into());
+    }
+    let tolerance = 1e-9 * (size + found.distance);
+    for &u in samples.iter().filter(|&&u| range.0 <= u && u <= range.1) {
+        let sampled = distance(curve.point_unchecked(u), case.query);
+        if sampled + tolerance < found.distance {
+            return Err(format!(
+                "closest point: parameter {u} is closer ({sampled}) than the answer {} ({})",
+                found.parameter, found.distance
+            ));
+        }
+    }
+    Ok(())
+}
+
+fn check_insertion(case: &Case, samples: &[f64], size: f64) -> Result<(), String> {
+    let curve = &case.curve;
+    let values = [case.parameter(2), case.parameter(3)];
+    let Ok(refined) = curve.insert_knots(&values, usize::MAX) else {
+        return Ok(()); // a refused multiplicity is a rule, not a finding
+    };
+    for &u in samples {
+        let gap = distance(curve.point_unchecked(u), refined.point_unchecked(u));
+        if gap > 1e-9 * size {
+            return Err(format!("insertion: the curve moved by {gap} at {u}"));
+        }
+    }
+    Ok(())
+}
+
+fn check_pieces(case: &Case, size: f64) -> Result<(), String> {
+    let curve = &case.curve;
+    let jumps = curve.jump_knots();
+    for piece in curve.bezier_pieces() {
+        let (a, b) = piece.domain;
+        let first = piece.control_point(0);
+        if distance(first, curve.point_unchecked(a)) > 1e-9 * size {
+            return Err(format!(
+                "Bézier pieces: the piece on [{a}, {b}] does not start on the curve"
+            ));
+        }
+        let last = piece.control_point(piece.degree());
+        if !jumps.contains(&b) && distance(last, curve.point_unchecked(b)) > 1e-9 * size {
+            return Err(format!(
+                "Bézier pieces: the piece on [{a}, {b}] does not end on the curve"
+            ));
+        }
+    }
+    Ok(())
+}
+
+fn check_tessellation(case: &Case, size: f64) -> Result<(), String> {
+    let curve = &case.curve;
+    let Ok(parameters) = curve.tessellate(case.relative_tolerance * size, 20_000) else {
+        return Ok(()); // too fine for the budget, or a jump: refused by rule
+    };
+    let (lo, hi) = curve.domain();
+    if parameters.first() != Some(&lo) || parameters.last() != Some(&hi) {
+        return Err("tessellation: the ends are missing".into());
+    }
+    if parameters.windows(2).any(|w| w[0] >= w[1]) {
+        return Err("tessellation: parameters not increasing".into());
+    }
+    Ok(())
+}
+
+fn check_shape(case: &Case, size: f64) -> Result<(), String> {
+    let curve = &case.curve;
+    let t = case.parameter(2);
+    let dimension = curve.dimension().count();
+    let base = curve.point_unchecked(t);
+    let target: Point = std::array::from_fn(|c| {
+        if c < dimension {
+            base[c] + case.query[c] / 16.0
+        } else {
+            0.0
+        }
+    });
+    let query = ShapeQuery {
+        side: SideChoice::Both,
+        pairs: &KnotPair::ALL,
+        keep_domain: case.fractions[3] < 0.7,
+        ..ShapeQuery::new(curve, t)
+    };
+    let options = SolveOptions {
+        measure_deviation: true,
+    };
+    let outcome = shape::solve(&query, &target[..dimension], options).map_err(|e| e.to_string())?;
+    for solution in &outcome.solutions {
+        let reached = curve.point_with_knots(&solution.knots, t);
+        if distance(reached, target) > 1e-6 * size {
+            return Err(format!(
+                "solve: a solution misses its target ({solution:?})"
+            ));
+        }
+        if !solution.max_deviation.is_some_and(f64::is_finite) {
+            return Err("solve: a deviation is not finite".into());
+        }
+    }
+    if let Some(moved) = shape::control_point_move(curve, t, target, true) {
+        if moved.residual > 1e-6 * size {
+            return Err(format!("control points: residual {}", moved.residual));
+        }
+    } else {
+        return Err("control points: no move for a finite target".into());
+    }
+    if !outcome.reachable() {
+        if let Some(nearest) = nearest_reachable(&query, target, true).map_err(|e| e.to_string())? {
+            for solution in &nearest.solutions {
+                let reached = curve.point_with_knots(&solution.knots, t);
+                if distance(reached, nearest.point) > 1e-6 * size {
+                    return Err("nearest: a solution misses the nearest point".into());
+                }
+            }
+        }
+    }
+    let polygons = shape::region_polygons(
+        &query,
+        PolygonOptions {
+            tolerance: None,
+            max_vertices: 512,
+        },
+    )
+    .map_err(|e| e.to_string())?;
+    for candidate in &polygons {
+        for region in &candidate.regions {
+            if !region.polygon.iter().flatten().all(|v| v.is_finite()) {
+                return Err("regions: a polygon has a non-finite vertex".into());
+            }
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,288 @@
+//! Wire types of the shape requests (membership, solve, regions) and their parsing into the
+//! core's query: sides, regions, the cubic curve.
+
+use serde::{Deserialize, Serialize};
+use utoipa::ToSchema;
+
+use crate::http::curve::CurveBody;
+use crate::http::error::{ApiError, FieldError};
+use crate::http::pointer::JsonPointer;
+use crate::http::wire::methods::Method;
+use crate::shape::{KnotPair, ShapeError, ShapeQuery, SideChoice};
+use crate::spline::{Curve, CurveLimits};
+
+/// The degree the knot-pair method works on.
+const CUBIC: usize = 3;
+
+/// Which knot next to `t` may move to `t`.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize, ToSchema)]
+#[serde(rename_all = "lowercase")]
+#[schema(example = json!("both"))]
+pub enum SideRequest {
+    /// The knot right of `t`, `u_{m+1}`.
+    Right,
+    /// The knot left of (or at) `t`, `u_m`.
+    Left,
+    /// Both, each as its own candidate (right first).
+    #[default]
+    Both,
+}
+
+impl From<SideRequest> for SideChoice {
+    fn from(side: SideRequest) -> Self {
+        match side {
+            SideRequest::Right => SideChoice::Right,
+            SideRequest::Left => SideChoice::Left,
+            SideRequest::Both => SideChoice::Both,
+        }
+    }
+}
+
+/// The side of a candidate.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, ToSchema)]
+#[serde(rename_all = "lowercase")]
+#[schema(example = json!("left"))]
+pub enum CandidateSide {
+    /// The knot right of `t` moved to `t`.
+    Right,
+    /// The knot left of (or at) `t` moved to `t`.
+    Left,
+}
+
+impl CandidateSide {
+    /// The name on the wire (as serde writes it).
+    pub fn wire_name(self) -> &'static str {
+        match self {
+            CandidateSide::Right => "right",
+            CandidateSide::Left => "left",
+        }
+    }
+}
+
+impl From<crate::shape::Side> for CandidateSide {
+    fn from(side: crate::shape::Side) -> Self {
+        match side {
+            crate::shape::Side::Right => CandidateSide::Right,
+            crate::shape::Side::Left => CandidateSide::Left,
+        }
+    }
+}
+
+/// A region `Ω_r`: the targets one knot pair reaches.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, ToSchema)]
+#[serde(rename_all = "lowercase")]
+#[schema(example = json!("omega2"))]
+pub enum Region {
+    /// `(a, b) = (v_{j-1}, v_j)` move (paper §3.1).
+    Omega1,
+    /// `(b, c) = (v_j, v_{j+1})` move (paper §3.1).
+    Omega2,
+    /// `(c, e) = (v_{j+1}, v_{j+2})` move (paper §3.1).
+    Omega3,
+    /// `(a, c) = (v_{j-1}, v_{j+1})` move (paper §3.2.1).
+    Omega4,
+    /// `(a, e) = (v_{j-1}, v_{j+2})` move (paper §3.2.2).
+    Omega5,
+    /// `(b, e) = (v_j, v_{j+2})` move (paper §3.2.3).
+    Omega6,
+}
+
+impl Region {
+    /// The name on the wire (as serde writes it).
+    pub fn wire_name(self) -> &'static str {
+        match self {
+            Region::Omega1 => "omega1",
+            Region::Omega2 => "omega2",
+            Region::Omega3 => "omega3",
+            Region::Omega4 => "omega4",
+            Region::Omega5 => "omega5",
+            Region::Omega6 => "omega6",
+        }
+    }
+}
+
+impl From<Region> for KnotPair {
+    fn from(region: Region) -> Self {
+        match region {
+            Region::Omega1 => KnotPair::Omega1,
+            Region::Omega2 => KnotPair::Omega2,
+            Region::Omega3 => KnotPair::Omega3,
+            Region::Omega4 => KnotPair::Omega4,
+            Region::Omega5 => KnotPair::Omega5,
+            Region::Omega6 => KnotPair::Omega6,
+        }
+    }
+}
+
+impl From<KnotPair> for Region {
+    fn from(pair: KnotPair) -> Self {
+        match pair {
+            KnotPair::Omega1 => Region::Omega1,
+            KnotPair::Omega2 => Region::Omega2,
+            KnotPair::Omega3 => Region::Omega3,
+            KnotPair::Omega4 => Region::Omega4,
+            KnotPair::Omega5 => Region::Omega5,
+            KnotPair::Omega6 => Region::Omega6,
+        }
+    }
+}
+
+fn keep_domain_default() -> bool {
+    true
+}
+
+/// A picked curve point `s(parameter)` and the target it should move to.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+#[schema(example = json!({
+    "curve": {"degree": 3, "control_points": [[0, 0], [1, 3], [3, 4], [5, 3.5], [6, 1], [8, 0], [9, 2], [10, 4]],
+              "knots": [0, 0, 0, 0, 0.2, 0.35, 0.5, 0.75, 1, 1, 1, 1]},
+    "parameter": 0.42,
+    "target": [4.746666666666666, 3.3233333333333333],
+    "side": "both",
+    "regions": ["omega1", "omega2", "omega3", "omega4", "omega5", "omega6"],
+    "keep_domain": true
+}))]
+pub struct ShapeRequest {
+    /// A cubic curve (degree 3).
+    pub curve: CurveBody,
+    /// The picked parameter `t`, inside the domain; one outside it by at most `1e-12` of the
+    /// domain's length (or 4 units of roundoff of the ends) is taken as the nearer end.
+    #[schema(example = 0.42)]
+    pub parameter: f64,
+    /// The target point `p` (same dimension as the control points).
+    #[schema(example = json!([4.746666666666666, 3.3233333333333333]))]
+    pub target: Vec<f64>,
+    /// Which knot next to `t` moves to `t` (default `both`).
+    #[serde(default)]
+    pub side: SideRequest,
+    /// The regions to try (default all six); no repeats.
+    #[serde(default)]
+    pub regions: Option<Vec<Region>>,
+    /// Drop solutions that move the ends of the curve's domain (default `true`).
+    #[serde(default = "keep_domain_default")]
+    #[schema(default = true, example = true)]
+    pub keep_domain: bool,
+    /// Solve only: when no solution reaches the target, answer `nearest`, the reachable point
+    /// closest to it (default `false`). Membership ignores it.
+    #[serde(default)]
+    #[schema(example = false)]
+    pub nearest: bool,
+    /// The ways to move the point (default `["knots"]`): `knots` (the knot pairs) and/or
+    /// `control_points` (the least-squares move of the poles whose basis is non-zero at `t`).
+    #[serde(default)]
+    #[schema(value_type = Option<Vec<Method>>, example = json!(["knots", "control_points"]))]
+    pub methods: Option<Vec<String>>,
+}
+
+/// A picked parameter whose regions' boundaries are wanted.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+#[schema(example = json!({
+    "curve": {"degree": 3, "control_points": [[0, 0], [1, 3], [3, 4], [5, 3.5], [6, 1], [8, 0], [9, 2], [10, 4]],
+              "knots": [0, 0, 0, 0, 0.2, 0.35, 0.5, 0.75, 1, 1, 1, 1]},
+    "parameter": 0.42,
+    "side": "left",
+    "regions": ["omega2", "omega4"],
+    "tolerance": 0.01
+}))]
+pub struct RegionsRequest {
+    /// A cubic curve (degree 3).
+    pub curve: CurveBody,
+    /// The picked parameter `t`, inside the domain; one outside it by at most `1e-12` of the
+    /// domain's length (or 4 units of roundoff of the ends) is taken as the nearer end.
+    #[schema(example = 0.42)]
+    pub parameter: f64,
+    /// Which knot next to `t` moves to `t` (default `both`).
+    #[serde(default)]
+    pub side: SideRequest,
+    /// The regions to draw (default all six); no repeats.
+    #[serde(default)]
+    pub regions: Option<Vec<Region>>,
+    /// Accepted for symmetry with the other shape endpoints; the polygons are the whole
+    /// regions (membership and solve apply the rule).
+    #[serde(default = "keep_domain_default")]
+    #[schema(default = true)]
+    pub keep_domain: bool,
+    /// Largest distance, in curve coordinates, between the true boundary and the polygon
+    /// (> 0; default 1/1000 of the control triangle's longest edge). Refinement also stops at
+    /// the configured vertex limit (then `tolerance_met` is false).
+    #[serde(default)]
+    #[schema(example = 0.01)]
+    pub tolerance: Option<f64>,
+    /// A target point (same dimension as the control points), drawn in the SVG picture
+    /// (`Accept: image/svg+xml`); checked but otherwise unused by the JSON answer.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schema(example = json!([4.746666666666666, 3.3233333333333333]))]
+    pub target: Option<Vec<f64>>,
+}
+
+/// The validated parts shared by the shape endpoints.
+pub struct ParsedShape {
+    /// The cubic curve.
+    pub curve: Curve,
+    /// The requested knot pairs, in order, without repeats.
+    pub pairs: Vec<KnotPair>,
+}
+
+impl ParsedShape {
+    /// Checks the degree first (the method is for cubics), then the curve and the regions.
+    pub fn parse(
+        curve: &CurveBody,
+        regions: &Option<Vec<Region>>,
+        curve_limits: &CurveLimits,
+    ) -> Result<ParsedShape, ApiError> {
+        if curve.degree != CUBIC {
+            return Err(ApiError::invalid(
+                "/curve/degree",
+                ShapeError::NotCubic {
+                    degree: curve.degree,
+                }
+                .to_string(),
+            ));
+        }
+        let mut errors = Vec::new();
+        let parsed_curve = curve.parse_collecting(curve_limits, "/curve", &mut errors);
+        let pairs = match regions {
+            None => KnotPair::ALL.to_vec(),
+            Some(regions) => {
+                if regions.is_empty() {
+                    errors.push(FieldError::new(
+                        "/regions",
+                        "`regions` must name at least one region (omit it for all six)",
+                    ));
+                }
+                let mut pairs: Vec<KnotPair> = Vec::with_capacity(regions.len().min(6));
+                for (index, &region) in regions.iter().enumerate() {
+                    let pair = KnotPair::from(region);
+                    if pairs.contains(&pair) {
+                        errors.push(FieldError::new(
+                            JsonPointer::from("/regions").push(index),
+                            format!("region {} is listed twice", pair.name()),
+                        ));
+                        break;
+                    }
+                    pairs.push(pair);
+                }
+                pairs
+            }
+        };
+        match parsed_curve {
+            Some(curve) if errors.is_empty() => Ok(ParsedShape { curve, pairs }),
+            _ => Err(ApiError::Invalid(errors)),
+        }
+    }
+
+    /// The core query of these parts (a parameter just outside the domain snapped onto its
+    /// end).
+    pub fn query(&self, parameter: f64, side: SideRequest, keep_domain: bool) -> ShapeQuery<'_> {
+        ShapeQuery {
+            curve: &self.curve,
+            // Just outside the domain: onto its end; farther out the query's check refuses it.
+            parameter: self.curve.snap_to_domain(parameter).unwrap_or(parameter),
+            side: side.into(),
+            pairs: &self.pairs,
+            keep_domain,
+        }
+    }
+}
