@@ -11,6 +11,8 @@ pub mod metrics;
 pub mod middleware;
 pub mod openapi_rules;
 pub mod pointer;
+pub mod regions_media;
+pub mod regions_svg;
 pub mod routes;
 pub mod server;
 pub mod state;
@@ -36,7 +38,7 @@ use utoipa_axum::routes;
 
 use crate::config::Config;
 use error::{FieldError, PROBLEM_JSON, Problem};
-use routes::{closest, curves, ops, shape, toolkit};
+use routes::{closest, curves, editor, ops, shape, toolkit};
 pub use server::{Server, shutdown_signal};
 pub use state::{AppState, Readiness};
 
@@ -63,6 +65,7 @@ pub fn app_with_state(config: &Config, state: AppState) -> Router {
 
     let cors = cors_layer(&config.cors_allow_origins);
     router
+        .merge(editor::router())
         .fallback(middleware::not_found)
         .method_not_allowed_fallback(middleware::method_not_allowed)
         .layer(

@@ -2,6 +2,7 @@
 
 pub mod closest;
 pub mod curves;
+pub mod editor;
 pub mod ops;
 pub mod shape;
 pub mod toolkit;

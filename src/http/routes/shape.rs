@@ -5,6 +5,8 @@
 
 use axum::Extension;
 use axum::extract::State;
+use axum::http::HeaderMap;
+use axum::response::Response;
 
 use super::compute;
 use crate::config::Limits;
@@ -12,6 +14,7 @@ use crate::http::curve::point_to_wire;
 use crate::http::error::{ApiError, FieldError, Problem};
 use crate::http::extract::ApiJson;
 use crate::http::middleware::AdmissionPermit;
+use crate::http::regions_media;
 use crate::http::state::AppState;
 use crate::http::wire::methods::{ControlPointMembershipBody, Methods};
 use crate::http::wire::shape_answer::{
@@ -166,7 +169,10 @@ pub async fn solve(
     tag = "shape",
     request_body = RegionsRequest,
     responses(
-        (status = 200, description = "Boundary polygons per candidate and region", body = RegionsResponse),
+        (status = 200, description = "Boundary polygons per candidate and region (JSON, the default), or, with `Accept: image/svg+xml`, an SVG picture of them: one panel per candidate with its control triangle, the regions in their colours (polygon `points` are the JSON answer's x and y), the picked point, the target when the request has one, and a legend", content(
+            (RegionsResponse = "application/json"),
+            (String = "image/svg+xml"),
+        )),
         (status = 400, description = "Malformed JSON, wrong types, unknown fields", body = Problem, content_type = "application/problem+json"),
         (status = 422, description = "A rule is broken (see `errors`)", body = Problem, content_type = "application/problem+json"),
     ),
@@ -175,16 +181,18 @@ pub async fn solve(
 pub async fn regions(
     State(state): State<AppState>,
     admission: Option<Extension<AdmissionPermit>>,
+    headers: HeaderMap,
     ApiJson(request): ApiJson<RegionsRequest>,
-) -> Result<ApiJson<RegionsResponse>, ApiError> {
+) -> Result<Response, ApiError> {
     let (limits, curve_limits) = (state.limits, state.curve_limits);
     // Up to two sides of six polygons, each up to the vertex limit.
     let work = 12 * limits.max_polygon_vertices.max(MIN_POLYGON_VERTEX_LIMIT);
+    let svg = regions_media::prefers_svg(&headers);
     compute(admission, work, move || {
-        regions_request(&request, &limits, &curve_limits)
+        let answer = regions_request(&request, &limits, &curve_limits)?;
+        regions_media::respond(&request, answer, &curve_limits, svg)
     })
     .await
-    .map(ApiJson)
 }
 
 fn regions_request(

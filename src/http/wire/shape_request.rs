@@ -210,6 +210,11 @@ pub struct RegionsRequest {
     #[serde(default)]
     #[schema(example = 0.01)]
     pub tolerance: Option<f64>,
+    /// A target point (same dimension as the control points), drawn in the SVG picture
+    /// (`Accept: image/svg+xml`); checked but otherwise unused by the JSON answer.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schema(example = json!([4.746666666666666, 3.3233333333333333]))]
+    pub target: Option<Vec<f64>>,
 }
 
 /// The validated parts shared by the shape endpoints.

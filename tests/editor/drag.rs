@@ -1,0 +1,323 @@
+//! The editor in Chromium, as a designer uses it: pick a point of the sample, drag it into
+//! a region and outside every region, undo and redo, and edit a single Bézier piece (knots
+//! inserted first). Each committed curve is checked against what the API answers for the
+//! same request, and against the target it must pass through.
+
+use serde_json::{Value, json};
+
+use super::browser::Browser;
+use super::page::Page;
+use super::steps::{
+    BOTH, apply, close, numbers, p95, paste, pick, pixel_inside_a_region,
+    pixel_outside_every_region, point_at, sample, smallest_deviation, solve, target_dir,
+};
+use crate::helpers::spawn_app;
+
+#[tokio::test]
+async fn pick_drag_into_a_region_commit_undo_redo_and_drag_outside_onto_nearest() {
+    let app = spawn_app().await;
+    let browser = Browser::start().await;
+    let page = Page::open(&browser.client, &app.address).await;
+    assert_eq!(page.script_errors().await, Vec::<String>::new());
+    let original = sample();
+    assert_eq!(numbers(&page.curve().await), numbers(&original));
+
+    // Pick: the regions of both sides appear, with the control triangles and a legend.
+    let (t, dot) = pick(&page, &app, &original, 0.42).await;
+    let drawn = page
+        .run(
+            "return [document.querySelectorAll('#scene polygon.region[data-side=left]').length, \
+             document.querySelectorAll('#scene polygon.region[data-side=right]').length, \
+             document.querySelectorAll('#scene polygon.triangle').length, \
+             document.querySelectorAll('#legend .swatch').length];",
+            vec![],
+        )
+        .await;
+    assert!(
+        drawn[0].as_u64().unwrap() > 0 && drawn[1].as_u64().unwrap() > 0,
+        "{drawn}"
+    );
+    assert_eq!(drawn[2], json!(2), "{drawn}");
+    assert!(drawn[3].as_u64().unwrap() >= 6, "{drawn}");
+
+    // Drag into a region: the committed curve is the API's smallest-deviation solution for
+    // the same request, and passes through the target.
+    let inside = pixel_inside_a_region(&page, &app, &original, t, dot).await;
+    let target = page.to_curve(inside).await;
+    let halfway = ((dot.0 + inside.0) / 2, (dot.1 + inside.1) / 2);
+    page.press_at(dot).await;
+    page.move_to(halfway).await;
+    page.move_to(inside).await;
+    page.wait_until(
+        "the preview is drawn",
+        "document.body.dataset.busy !== 'true'",
+    )
+    .await;
+    let png = browser.client.screenshot().await.expect("screenshot");
+    std::fs::create_dir_all(target_dir()).unwrap();
+    let path = target_dir().join("editor-screenshot.png");
+    std::fs::write(&path, png).unwrap();
+    println!("editor screenshot (mid-drag): {}", path.display());
+    page.release().await;
+    page.settle().await;
+    let committed = page.curve().await;
+    let answer = solve(&app, &original, t, target, &BOTH).await;
+    let solutions = answer["solutions"].as_array().unwrap();
+    let expected = apply(&original, smallest_deviation(solutions));
+    assert_eq!(
+        numbers(&committed),
+        numbers(&expected),
+        "{}",
+        page.describe().await
+    );
+    let through = point_at(&app, &committed, t).await;
+    assert!(close(through, target), "{through:?} vs target {target:?}");
+    assert_eq!(
+        page.data("solutions").await.parse::<usize>().unwrap(),
+        solutions.len()
+    );
+    // Another solution from the list replaces the commit (the list is in the API's order).
+    let committed = match solutions
+        .iter()
+        .position(|s| apply(&original, s) != expected)
+    {
+        Some(other) => {
+            page.client
+                .find(fantoccini::Locator::Css(&format!(
+                    "#solutions input[name=solution][value='{other}']"
+                )))
+                .await
+                .expect("the other solution's radio button")
+                .click()
+                .await
+                .unwrap();
+            page.settle().await;
+            let chosen = page.curve().await;
+            assert_eq!(
+                numbers(&chosen),
+                numbers(&apply(&original, &solutions[other]))
+            );
+            assert!(close(point_at(&app, &chosen, t).await, target));
+            chosen
+        }
+        None => committed,
+    };
+
+    // Undo (Ctrl+Z) restores the original, redo (Ctrl+Shift+Z) the edit, the button undoes.
+    page.ctrl_z(false).await;
+    assert_eq!(numbers(&page.curve().await), numbers(&original));
+    page.ctrl_z(true).await;
+    assert_eq!(numbers(&page.curve().await), numbers(&committed));
+    page.click_id("undo").await;
+    page.settle().await;
+    assert_eq!(numbers(&page.curve().await), numbers(&original));
+
+    // Drag time: 60 moves, each waited for, request to redraw measured by the page.
+    let (_, dot) = pick(&page, &app, &original, 0.42).await;
+    page.press_at(dot).await;
+    let mut solved = 0;
+    for step in 1..=60 {
+        let angle = f64::from(step) * std::f64::consts::TAU / 60.0;
+        let radius = 6.0 + f64::from(step % 20);
+        let pixel = (
+            dot.0 + (radius * angle.cos()).round() as i64,
+            dot.1 + (radius * angle.sin()).round() as i64,
+        );
+        page.move_to(pixel).await;
+        page.wait_until(
+            "the move is drawn",
+            &format!(
+                "JSON.parse(document.body.dataset.dragTimings || '[]').length > {solved} \
+                 && document.body.dataset.busy !== 'true'"
+            ),
+        )
+        .await;
+        solved = serde_json::from_str::<Vec<f64>>(&page.data("dragTimings").await)
+            .unwrap()
+            .len();
+    }
+    page.release().await;
+    page.settle().await;
+    let mut timings: Vec<f64> = serde_json::from_str(&page.data("dragTimings").await).unwrap();
+    assert!(timings.len() >= 50, "{} timed moves", timings.len());
+    let count = timings.len();
+    let median = {
+        let mut sorted = timings.clone();
+        sorted.sort_by(f64::total_cmp);
+        sorted[count / 2]
+    };
+    let p95_total = p95(&mut timings);
+    let phases: Vec<[f64; 3]> = serde_json::from_str(&page.data("dragPhases").await).unwrap();
+    let phase_p95 = |index: usize| p95(&mut phases.iter().map(|p| p[index]).collect::<Vec<_>>());
+    let report = format!(
+        "editor drag-to-redraw over {count} moves: p95 {p95_total:.2} ms, median {median:.2} ms \
+         (target 16 ms); p95 of the parts: solve request {:.2} ms, preview drawing request \
+         {:.2} ms, redraw {:.2} ms\n",
+        phase_p95(0),
+        phase_p95(1),
+        phase_p95(2)
+    );
+    print!("{report}");
+    std::fs::write(target_dir().join("editor-drag-timings.txt"), &report).unwrap();
+
+    // Outside every region (knots only: the control-point move reaches any target, so the
+    // API gives `nearest` only without it): the point lands on the nearest reachable point.
+    page.click_id("sample").await;
+    page.settle().await;
+    page.click_id("method-control-points").await;
+    let (t, dot) = pick(&page, &app, &original, 0.42).await;
+    let outside = pixel_outside_every_region(&page, &app, &original, t, dot).await;
+    let target = page.to_curve(outside).await;
+    page.drag(dot, &[outside]).await;
+    let committed = page.curve().await;
+    let answer = solve(&app, &original, t, target, &["knots"]).await;
+    let nearest = &answer["nearest"];
+    let nearest_point = [
+        nearest["point"][0].as_f64().unwrap(),
+        nearest["point"][1].as_f64().unwrap(),
+    ];
+    let expected = apply(
+        &original,
+        smallest_deviation(nearest["solutions"].as_array().unwrap()),
+    );
+    assert_eq!(
+        numbers(&committed),
+        numbers(&expected),
+        "{}",
+        page.describe().await
+    );
+    let through = point_at(&app, &committed, t).await;
+    assert!(
+        close(through, nearest_point),
+        "{through:?} vs nearest {nearest_point:?}"
+    );
+
+    assert_eq!(page.script_errors().await, Vec::<String>::new());
+    browser.close().await;
+}
+
+#[tokio::test]
+async fn a_single_bezier_gets_knots_inserted_and_then_drags() {
+    let app = spawn_app().await;
+    let browser = Browser::start().await;
+    let page = Page::open(&browser.client, &app.address).await;
+    page.click_id("bezier-sample").await;
+    page.settle().await;
+    let bezier = page.curve().await;
+    assert_eq!(
+        numbers(&bezier).1,
+        vec![0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0]
+    );
+
+    let (t, dot) = pick(&page, &app, &bezier, 0.5).await;
+    let message = page.data("message").await;
+    assert!(message.contains("inserted knots"), "message: {message}");
+    let refined = page.curve().await;
+    assert!(numbers(&refined).1.len() > 8, "{refined}");
+    for u in [0.1, 0.3, 0.5, 0.77, 0.95] {
+        let (before, after) = (
+            point_at(&app, &bezier, u).await,
+            point_at(&app, &refined, u).await,
+        );
+        assert!(
+            close(before, after),
+            "knot insertion changed the shape at {u}"
+        );
+    }
+
+    let inside = pixel_inside_a_region(&page, &app, &refined, t, dot).await;
+    let target = page.to_curve(inside).await;
+    page.press_at(dot).await;
+    page.move_to(inside).await;
+    page.wait_until(
+        "the preview is drawn",
+        "document.body.dataset.busy !== 'true'",
+    )
+    .await;
+    let png = browser.client.screenshot().await.expect("screenshot");
+    std::fs::create_dir_all(target_dir()).unwrap();
+    std::fs::write(target_dir().join("editor-screenshot-bezier.png"), png).unwrap();
+    page.release().await;
+    page.settle().await;
+    let committed = page.curve().await;
+    let answer = solve(&app, &refined, t, target, &BOTH).await;
+    let expected = apply(
+        &refined,
+        smallest_deviation(answer["solutions"].as_array().unwrap()),
+    );
+    assert_eq!(
+        numbers(&committed),
+        numbers(&expected),
+        "{}",
+        page.describe().await
+    );
+    assert!(close(point_at(&app, &committed, t).await, target));
+    assert_ne!(numbers(&committed), numbers(&refined));
+
+    // Undo twice: the drag, then the insertion.
+    page.ctrl_z(false).await;
+    assert_eq!(numbers(&page.curve().await), numbers(&refined));
+    page.ctrl_z(false).await;
+    assert_eq!(numbers(&page.curve().await), numbers(&bezier));
+
+    // A pasted rational curve in the trimmed (openNURBS) convention: drawn as a certified
+    // polyline, exported as it is.
+    let rational = json!({"degree": 3, "control_points": [[0, 0], [1, 2], [3, 2], [4, 0], [5, 1]],
+                          "knots": [0, 0, 0, 0.5, 1, 1, 1], "weights": [1, 1, 2, 1, 1]});
+    paste(&page, &rational).await;
+    assert_eq!(numbers(&page.curve().await), numbers(&rational));
+    let polyline = page
+        .run(
+            "return document.querySelectorAll('#scene polyline.curve').length;",
+            vec![],
+        )
+        .await;
+    assert_eq!(polyline, json!(1));
+    page.click_id("export").await;
+    let exported = page
+        .run(
+            "return document.getElementById('curve-json').value;",
+            vec![],
+        )
+        .await;
+    let exported: Value = serde_json::from_str(exported.as_str().unwrap()).unwrap();
+    assert_eq!(numbers(&exported), numbers(&rational));
+
+    // A 3D curve: shown in projection, editing refused with a message.
+    let spatial = json!({"degree": 3, "control_points": [[0, 0, 0], [1, 2, 1], [3, 2, 2], [4, 0, 3]],
+                         "knots": [0, 0, 0, 0, 1, 1, 1, 1]});
+    paste(&page, &spatial).await;
+    assert!(page.data("message").await.contains("3D"));
+    let pixel = page.to_screen(point_at(&app, &spatial, 0.5).await).await;
+    page.click_at(pixel).await;
+    page.settle().await;
+    assert!(page.picked().await.is_none());
+    assert!(
+        page.data("message")
+            .await
+            .contains("does not edit 3D curves")
+    );
+
+    // Broken JSON and a curve the API refuses: readable messages, the page keeps working.
+    page.run(
+        "document.getElementById('curve-json').value = '{not json';",
+        vec![],
+    )
+    .await;
+    page.click_id("load").await;
+    assert!(page.data("error").await.contains("not JSON"));
+    paste(
+        &page,
+        &json!({"degree": 3, "control_points": [[0, 0], [1, 1]], "knots": [0, 1]}),
+    )
+    .await;
+    let error = page.data("error").await;
+    assert!(
+        error.contains("Cannot load this curve") && error.contains("/curve"),
+        "{error}"
+    );
+    assert_eq!(numbers(&page.curve().await), numbers(&spatial));
+
+    assert_eq!(page.script_errors().await, Vec::<String>::new());
+    browser.close().await;
+}

@@ -1,0 +1,193 @@
+//! The steps the browser tests share: what they ask the API (the reference answers), how
+//! they find a target inside or outside the regions, and what they do to the page.
+
+use std::path::PathBuf;
+
+use serde_json::{Value, json};
+
+use super::page::Page;
+use crate::helpers::TestApp;
+
+/// The page's sample cubic (editor/js/sample.js).
+pub fn sample() -> Value {
+    json!({"degree": 3, "control_points": [[0, 0], [1, 3], [3, 4], [5, 3.5], [6, 1], [8, 0], [9, 2], [10, 4]],
+           "knots": [0, 0, 0, 0, 0.2, 0.35, 0.5, 0.75, 1, 1, 1, 1]})
+}
+
+/// Both methods, as the page sends them by default.
+pub const BOTH: [&str; 2] = ["knots", "control_points"];
+
+/// The curve's numbers, for comparison regardless of how JSON wrote them (`0` or `0.0`).
+pub fn numbers(curve: &Value) -> (u64, Vec<f64>, Vec<f64>, Option<Vec<f64>>) {
+    let list = |value: &Value| -> Vec<f64> {
+        value
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|v| v.as_f64().unwrap())
+            .collect()
+    };
+    let points = curve["control_points"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .flat_map(&list)
+        .collect();
+    let weights = curve.get("weights").filter(|w| !w.is_null()).map(list);
+    (
+        curve["degree"].as_u64().unwrap(),
+        list(&curve["knots"]),
+        points,
+        weights,
+    )
+}
+
+/// The curve a solution describes (its new knots or new control points).
+pub fn apply(curve: &Value, solution: &Value) -> Value {
+    let mut next = curve.clone();
+    match solution["method"].as_str().unwrap() {
+        "knots" => next["knots"] = solution["knots"].clone(),
+        "control_points" => next["control_points"] = solution["control_points"].clone(),
+        other => panic!("unknown method {other}"),
+    }
+    next
+}
+
+/// The solution with the smallest `max_deviation` (the page's default choice).
+pub fn smallest_deviation(solutions: &[Value]) -> &Value {
+    solutions
+        .iter()
+        .min_by(|a, b| {
+            a["max_deviation"]
+                .as_f64()
+                .unwrap()
+                .total_cmp(&b["max_deviation"].as_f64().unwrap())
+        })
+        .expect("at least one solution")
+}
+
+pub async fn solve(
+    app: &TestApp,
+    curve: &Value,
+    t: f64,
+    target: [f64; 2],
+    methods: &[&str],
+) -> Value {
+    let request = json!({"curve": curve, "parameter": t, "target": target, "side": "both",
+                         "nearest": true, "methods": methods});
+    let (status, body) = app.post_json("/v1/shape/solve", &request).await;
+    assert_eq!(status, 200, "{body}");
+    body
+}
+
+pub async fn point_at(app: &TestApp, curve: &Value, t: f64) -> [f64; 2] {
+    let (status, body) = app
+        .post_json(
+            "/v1/curves/evaluate",
+            &json!({"curve": curve, "parameters": [t]}),
+        )
+        .await;
+    assert_eq!(status, 200, "{body}");
+    let point = &body["points"][0];
+    [point[0].as_f64().unwrap(), point[1].as_f64().unwrap()]
+}
+
+pub fn close(a: [f64; 2], b: [f64; 2]) -> bool {
+    let scale = 1.0 + a[0].abs().max(a[1].abs());
+    (a[0] - b[0]).hypot(a[1] - b[1]) <= 1e-9 * scale
+}
+
+/// Pixels around `centre`, nearest first (rings of 8 px, 16 directions).
+pub fn around(centre: (i64, i64), rings: std::ops::RangeInclusive<i64>) -> Vec<(i64, i64)> {
+    let mut pixels = Vec::new();
+    for ring in rings {
+        for step in 0..16 {
+            let angle = f64::from(step) * std::f64::consts::TAU / 16.0;
+            let radius = 8.0 * ring as f64;
+            pixels.push((
+                centre.0 + (radius * angle.cos()).round() as i64,
+                centre.1 + (radius * angle.sin()).round() as i64,
+            ));
+        }
+    }
+    pixels
+}
+
+/// A pixel near `picked` whose curve point a knot pair reaches (inside a region).
+pub async fn pixel_inside_a_region(
+    page: &Page<'_>,
+    app: &TestApp,
+    curve: &Value,
+    t: f64,
+    picked: (i64, i64),
+) -> (i64, i64) {
+    for pixel in around(picked, 2..=8) {
+        let target = page.to_curve(pixel).await;
+        let answer = solve(app, curve, t, target, &["knots"]).await;
+        if answer["reachable"] == json!(true) {
+            return pixel;
+        }
+    }
+    panic!("no pixel near {picked:?} lies inside a region");
+}
+
+/// A pixel whose curve point no knot pair reaches, with a nearest reachable point.
+pub async fn pixel_outside_every_region(
+    page: &Page<'_>,
+    app: &TestApp,
+    curve: &Value,
+    t: f64,
+    picked: (i64, i64),
+) -> (i64, i64) {
+    for pixel in around(picked, 10..=24) {
+        let (x, y) = pixel;
+        if !(20..700).contains(&x) || !(100..560).contains(&y) {
+            continue;
+        }
+        let target = page.to_curve(pixel).await;
+        let answer = solve(app, curve, t, target, &["knots"]).await;
+        if answer["reachable"] == json!(false) && answer["nearest"].is_object() {
+            return pixel;
+        }
+    }
+    panic!("no pixel near {picked:?} lies outside every region");
+}
+
+/// Clicks the curve point at `t` and waits for the pick; returns the picked parameter and
+/// the dot's pixel.
+pub async fn pick(page: &Page<'_>, app: &TestApp, curve: &Value, t: f64) -> (f64, (i64, i64)) {
+    let pixel = page.to_screen(point_at(app, curve, t).await).await;
+    page.click_at(pixel).await;
+    page.settle().await;
+    let picked = page
+        .picked()
+        .await
+        .unwrap_or_else(|| panic!("no pick after a click on the curve"));
+    let parameter = picked["parameter"].as_f64().unwrap();
+    assert!((parameter - t).abs() < 0.02, "picked {picked} near t = {t}");
+    (parameter, pixel)
+}
+
+pub fn target_dir() -> PathBuf {
+    std::env::var_os("CARGO_TARGET_DIR")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("target"))
+}
+
+/// The 95th percentile (nearest rank) of `values`.
+pub fn p95(values: &mut [f64]) -> f64 {
+    values.sort_by(f64::total_cmp);
+    let rank = ((0.95 * values.len() as f64).ceil() as usize).clamp(1, values.len());
+    values[rank - 1]
+}
+
+/// Pastes `curve` into the JSON field and loads it.
+pub async fn paste(page: &Page<'_>, curve: &Value) {
+    page.run(
+        "document.getElementById('curve-json').value = arguments[0];",
+        vec![json!(curve.to_string())],
+    )
+    .await;
+    page.click_id("load").await;
+    page.settle().await;
+}
