@@ -124,10 +124,19 @@ pub fn frame_of(pair: KnotPair, k: &LocalKnots, values: [f64; 2]) -> [f64; 2] {
             LocalKnot::E => knots.e = value,
         }
     }
+    // Interpolated edge points can overshoot a bound by a rounding error (`r + (c - r)` need
+    // not be `c`): keep the order `a <= b <= t <= c <= e` that equations (2) assume.
+    knots.b = knots.b.min(knots.t);
+    knots.a = knots.a.min(knots.b);
+    knots.c = knots.c.max(knots.t);
+    knots.e = knots.e.max(knots.c);
     if knots.c <= knots.b {
         return [0.0, 0.0];
     }
     let (x, y) = knots.frame();
+    // `c = t` forces `x = 0`, `b = t` forces `y = 0`, whatever the other factors (no 0/0).
+    let x = if knots.c == knots.t { 0.0 } else { x };
+    let y = if knots.b == knots.t { 0.0 } else { y };
     [x, y]
 }
 
@@ -139,7 +148,8 @@ fn distance_to_segment(point: Point, from: Point, to: Point) -> f64 {
     if length_sq == 0.0 {
         return norm(offset);
     }
-    let along = dot(offset, direction).clamp(0.0, length_sq);
+    // Not `clamp`: it panics on a NaN bound, and a degenerate edge may give one.
+    let along = dot(offset, direction).max(0.0).min(length_sq);
     if along == 0.0 || along == length_sq {
         return norm(sub(point, if along == 0.0 { from } else { to }));
     }
@@ -258,5 +268,30 @@ fn region_polygon(
         polygon_frame: sampler.frame,
         polygon: sampler.points,
         tolerance_met: sampler.tolerance_met,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Found by the structured fuzzer: an edge point interpolated to `e` one rounding error
+    /// below `c`, with `b = t`, made `y = 0/0` and a NaN vertex, which panicked the polygon's
+    /// `clamp` (a 500 from `/v1/shape/regions`). The order is restored, `y` is 0.
+    #[test]
+    fn an_edge_point_overshooting_its_bound_by_rounding_has_a_finite_frame() {
+        let k = LocalKnots {
+            l: -7.1875,
+            a: -4.974375,
+            b: -2.7612500000000004,
+            t: -0.28812500000000085,
+            c: -0.28812500000000063,
+            e: -0.28812500000000063,
+            r: 3.565624999999999,
+        };
+        let frame = frame_of(KnotPair::Omega6, &k, [k.t, k.t]);
+        assert!(frame.iter().all(|v| v.is_finite()), "{frame:?}");
+        assert_eq!(frame[1], 0.0);
+        assert!(distance_to_segment([0.0; 3], [f64::NAN; 3], [1.0, 0.0, 0.0]).is_nan());
     }
 }
