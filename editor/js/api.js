@@ -96,7 +96,8 @@ export function regions(curve, parameter) {
   return post("/v1/shape/regions", { curve, parameter, side: "both" });
 }
 
-/** POST /v1/shape/solve with `nearest` and the given methods. */
+/** POST /v1/shape/solve with `nearest`, the given methods and each solution's SVG path (so a
+ * drag's preview needs no second request). */
 export function solve(curve, parameter, target, methods) {
-  return post("/v1/shape/solve", { curve, parameter, target, side: "both", nearest: true, methods });
+  return post("/v1/shape/solve", { curve, parameter, target, side: "both", nearest: true, methods, svg_paths: true });
 }

@@ -218,7 +218,9 @@ async function solveLatest() {
       const chosen = model.defaultChoice(solutions);
       const preview = geometry.applySolution(drag.base, solutions[chosen]);
       const solvedAt = performance.now();
-      const previewDrawing = await drawingOf(preview, { marks: false });
+      // The answer carries the new curve's SVG path when SVG draws it exactly: one round trip.
+      const path = solutions[chosen].svg_path;
+      const previewDrawing = path ? { path, knotPoints: [] } : await drawingOf(preview, { marks: false });
       if (mine !== generation) break;
       const fetchedAt = performance.now();
       setState({

@@ -177,3 +177,35 @@ async fn bad_methods_are_422s_that_point_at_them() {
         }
     }
 }
+
+#[tokio::test]
+async fn svg_paths_are_the_new_curves_as_bezier_draws_them() {
+    let app = spawn_app().await;
+    let curve = cubic_2d();
+    let mut target = curve.point(0.42);
+    target[0] += 0.3;
+    target[1] -= 0.3;
+    let request = json!({"curve": curve.to_json(false), "parameter": 0.42, "target": target,
+                         "methods": ["knots", "control_points"], "svg_paths": true});
+    let (status, body) = app.post_json("/v1/shape/solve", &request).await;
+    assert_eq!(status, 200, "{body}");
+    let solutions = body["solutions"].as_array().unwrap();
+    assert!(solutions.len() >= 2, "{body}");
+    for solution in solutions {
+        let mut moved = curve.to_json(false);
+        if let Some(knots) = solution.get("knots") {
+            moved["knots"] = knots.clone();
+        } else {
+            moved["control_points"] = solution["control_points"].clone();
+        }
+        let (status, pieces) = app
+            .post_json("/v1/curves/bezier", &json!({"curve": moved}))
+            .await;
+        assert_eq!(status, 200, "{pieces}");
+        assert_eq!(solution["svg_path"], pieces["svg_path"], "{solution}");
+    }
+    // Without the flag, no paths.
+    let plain = json!({"curve": curve.to_json(false), "parameter": 0.42, "target": target});
+    let (_, body) = app.post_json("/v1/shape/solve", &plain).await;
+    assert!(body["solutions"][0].get("svg_path").is_none());
+}

@@ -19,8 +19,8 @@ use crate::http::state::AppState;
 use crate::http::wire::methods::{ControlPointMembershipBody, Methods};
 use crate::http::wire::shape_answer::{
     MembershipResponse, NearestBody, RegionsResponse, SolutionBody, SolveResponse,
-    control_point_solution_body, knot_solution_body, membership_candidates, regions_response,
-    shape_error,
+    control_point_solution_body, control_point_solution_path, knot_solution_body,
+    knot_solution_path, membership_candidates, regions_response, shape_error,
 };
 use crate::http::wire::shape_request::{ParsedShape, RegionsRequest, ShapeRequest};
 use crate::shape::{self, PolygonOptions, SolveOptions};
@@ -119,17 +119,23 @@ pub async fn solve(
         let target =
             shape::target_point(curve, &request.target).map_err(|error| shape_error(&error))?;
         let mut solutions: Vec<SolutionBody> = Vec::new();
+        let paths = request.svg_paths;
         if methods.knots {
-            solutions.extend(
-                outcome
-                    .solutions
-                    .iter()
-                    .map(|s| knot_solution_body(curve, s)),
-            );
+            solutions.extend(outcome.solutions.iter().map(|s| SolutionBody {
+                svg_path: paths.then(|| knot_solution_path(curve, s)).flatten(),
+                ..knot_solution_body(curve, s)
+            }));
         }
         if methods.control_points {
             let moved = shape::control_point_move(curve, query.parameter, target, true);
-            solutions.extend(moved.map(|m| control_point_solution_body(curve, &m)));
+            solutions.extend(moved.map(|m| {
+                SolutionBody {
+                    svg_path: paths
+                        .then(|| control_point_solution_path(curve, &m))
+                        .flatten(),
+                    ..control_point_solution_body(curve, &m)
+                }
+            }));
         }
         solutions.sort_by(|p, q| p.max_deviation.total_cmp(&q.max_deviation));
         let nearest = if request.nearest && methods.knots && solutions.is_empty() {
@@ -141,7 +147,10 @@ pub async fn solve(
                     solutions: nearest
                         .solutions
                         .iter()
-                        .map(|s| knot_solution_body(curve, s))
+                        .map(|s| SolutionBody {
+                            svg_path: paths.then(|| knot_solution_path(curve, s)).flatten(),
+                            ..knot_solution_body(curve, s)
+                        })
                         .collect(),
                 })
         } else {

@@ -132,6 +132,10 @@ pub struct SolutionBody {
     /// The new curve's point at `parameter`.
     #[schema(value_type = Vec<f64>)]
     pub point: WirePoint,
+    /// With `svg_paths: true` in the request: the new curve as an SVG path `d` string (as
+    /// `/v1/curves/bezier` writes it), for planar non-rational curves of degree <= 3.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub svg_path: Option<String>,
     /// `|point - target|` (for `nearest` solutions: `|point - nearest.point|`).
     pub residual: f64,
     /// `[lo, hi]`: outside it the new curve equals the old one.
@@ -243,6 +247,7 @@ pub fn knot_solution_body(curve: &Curve, solution: &shape::Solution) -> Solution
         control_points: None,
         changed_control_points: None,
         point: point_to_wire(solution.point, curve.dimension()),
+        svg_path: None,
         residual: solution.residual,
         affected_domain: [solution.affected_domain.0, solution.affected_domain.1],
         max_deviation: solution.max_deviation.unwrap_or(0.0),
@@ -272,6 +277,7 @@ pub fn control_point_solution_body(
         ),
         changed_control_points: Some(solution.changed_control_points.clone()),
         point: point_to_wire(solution.point, dimension),
+        svg_path: None,
         residual: solution.residual,
         affected_domain: [solution.affected_domain.0, solution.affected_domain.1],
         max_deviation: solution.max_deviation.unwrap_or(0.0),
@@ -376,4 +382,24 @@ pub fn regions_response(curve: &Curve, candidates: Vec<CandidateRegions>) -> Reg
             })
             .collect(),
     }
+}
+
+/// The SVG path of a knot solution's new curve (`None` where SVG cannot draw it exactly).
+pub fn knot_solution_path(curve: &Curve, solution: &shape::Solution) -> Option<String> {
+    let moved = curve.with_full_knots(solution.knots.clone())?;
+    path_of(&moved)
+}
+
+/// The SVG path of a control-point solution's new curve.
+pub fn control_point_solution_path(
+    curve: &Curve,
+    solution: &shape::ControlPointSolution,
+) -> Option<String> {
+    let moved = curve.with_control_points(solution.control_points.clone())?;
+    path_of(&moved)
+}
+
+fn path_of(curve: &Curve) -> Option<String> {
+    let pieces: Vec<_> = curve.bezier_pieces().collect();
+    crate::http::svg_path::svg_path(curve, &pieces)
 }

@@ -173,6 +173,12 @@ pub struct ShapeRequest {
     #[serde(default)]
     #[schema(value_type = Option<Vec<Method>>, example = json!(["knots", "control_points"]))]
     pub methods: Option<Vec<String>>,
+    /// Solve only: give each solution the `svg_path` of its new curve (planar non-rational
+    /// curves of degree <= 3), so that a drag can draw its preview without another request
+    /// (default `false`).
+    #[serde(default)]
+    #[schema(example = false)]
+    pub svg_paths: bool,
 }
 
 /// A picked parameter whose regions' boundaries are wanted.
