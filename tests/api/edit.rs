@@ -181,12 +181,14 @@ async fn bad_methods_are_422s_that_point_at_them() {
 #[tokio::test]
 async fn svg_paths_are_the_new_curves_as_bezier_draws_them() {
     let app = spawn_app().await;
-    let curve = cubic_2d();
-    let mut target = curve.point(0.42);
-    target[0] += 0.3;
-    target[1] -= 0.3;
-    let request = json!({"curve": curve.to_json(false), "parameter": 0.42, "target": target,
-                         "methods": ["knots", "control_points"], "svg_paths": true});
+    // The first worked example: a target that knot pairs reach too.
+    let example: Value =
+        serde_json::from_str(include_str!("../../examples/shape-solve.json")).unwrap();
+    let curve = ReferenceCurve::from_json(&example["curve"]);
+    let target = numbers(&example["target"]);
+    let request = json!({"curve": curve.to_json(false), "parameter": example["parameter"],
+                         "target": target, "methods": ["knots", "control_points"],
+                         "svg_paths": true});
     let (status, body) = app.post_json("/v1/shape/solve", &request).await;
     assert_eq!(status, 200, "{body}");
     let solutions = body["solutions"].as_array().unwrap();
@@ -205,7 +207,8 @@ async fn svg_paths_are_the_new_curves_as_bezier_draws_them() {
         assert_eq!(solution["svg_path"], pieces["svg_path"], "{solution}");
     }
     // Without the flag, no paths.
-    let plain = json!({"curve": curve.to_json(false), "parameter": 0.42, "target": target});
+    let plain = json!({"curve": curve.to_json(false), "parameter": example["parameter"],
+                       "target": target});
     let (_, body) = app.post_json("/v1/shape/solve", &plain).await;
-    assert!(body["solutions"][0].get("svg_path").is_none());
+    assert!(body["solutions"][0].get("svg_path").is_none(), "{body}");
 }
