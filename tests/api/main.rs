@@ -14,6 +14,7 @@ mod helpers;
 mod insert_knots;
 mod limits;
 mod ops;
+mod pictures;
 mod pieces;
 mod reference;
 mod shape;
