@@ -2,8 +2,8 @@
 //! derive cannot state them: array lengths (points of 2 or 3 coordinates, pairs, triangles),
 //! exclusive minimums, unique region lists, exactly one way of choosing parameters, problem
 //! status codes, response headers, open operations, a `servers` entry; and the shape of
-//! answers as they are sent: optional answer fields are left out, never `null`, and request
-//! fields carry no `default` (generators would make such fields required).
+//! answers as they are sent: optional fields of answer-only schemas are left out, never
+//! `null`, and request fields carry no `default` (generators would make such fields required).
 
 use serde_json::{Map, Value, json};
 
@@ -114,7 +114,12 @@ pub fn apply(document: &mut Value) {
         status.insert("minimum".into(), json!(100));
         status.insert("maximum".into(), json!(599));
     }
-    for name in &response_schemas {
+    // Only schemas that are never sent in a request: a request may send `null` for an
+    // optional field (it reads as absent), so shared schemas (the curve) keep it.
+    for name in response_schemas
+        .iter()
+        .filter(|name| !request_schemas.contains(name))
+    {
         if let Some(schema) = schemas.get_mut(name) {
             optional_fields_not_null(schema);
         }
