@@ -24,8 +24,8 @@ use super::solve::{
     KnotEdit, ShapeError, ShapeQuery, Solution, SolveOptions, knot_solution, solve,
     sort_by_deviation,
 };
-use crate::spline::Dimension;
 use crate::spline::vector::{Point, cross, distance, dot, sub};
+use crate::spline::{Dimension, distance_to_segment};
 
 /// Sampling tolerance of the boundaries, relative to the control triangle's longest edge.
 pub const NEAREST_SAMPLING_TOLERANCE: f64 = 1e-3;
@@ -68,21 +68,6 @@ struct Segment {
     from: f64,
     to: f64,
     bound: f64,
-}
-
-/// Distance from `point` to the segment `from`–`to`.
-fn distance_to_segment(point: Point, from: Point, to: Point) -> f64 {
-    let direction = sub(to, from);
-    let length_sq = dot(direction, direction);
-    let along = if length_sq > 0.0 {
-        (dot(sub(point, from), direction) / length_sq).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    distance(
-        point,
-        std::array::from_fn(|c| from[c] + along * direction[c]),
-    )
 }
 
 /// One side and pair's search domain: the local knots and which unknowns are frozen.

@@ -22,6 +22,9 @@
 //! the curve evaluator, and the smallest parameter among those within
 //! [`CLOSEST_POINT_TOLERANCE`] of the least distance is the answer. Work per query is bounded
 //! ([`MAX_HALVINGS`] halvings), whatever the input.
+//!
+//! One file for one algorithm: the search and the Bernstein forms it bounds, halves and
+//! solves are read together (about 450 lines); the rest is its unit tests.
 
 use super::MAX_DEGREE;
 use super::basis::find_span;

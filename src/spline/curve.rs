@@ -1,4 +1,8 @@
 //! The validated curve type: degree, control points, knots (either convention) and weights.
+//!
+//! One concept, kept whole: the type, every rule of its validation with the typed errors that
+//! name the field, the conventions and the derived curves (other knots or control points,
+//! ends snapped onto the domain); a third of the file is the tests of those rules.
 
 use super::basis::{MAX_DEGREE, basis_functions, find_span};
 use super::vector::Point;
