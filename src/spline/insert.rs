@@ -69,7 +69,9 @@ impl InsertError {
 
 impl Curve {
     /// The same curve with the knot values `values` inserted (a value may repeat to raise its
-    /// multiplicity), in the same knot convention.
+    /// multiplicity), in the same knot convention. A periodic curve takes any finite value
+    /// (reduced into its period; `k_m` is `k_0`) and stays periodic: the value is inserted
+    /// into every period.
     ///
     /// Each value is snapped onto the domain ([`Curve::snap_to_domain`]) and must then lie
     /// in `[lo, hi]`; its multiplicity in the full knot vector after insertion must stay at
@@ -82,7 +84,7 @@ impl Curve {
         max_control_points: usize,
     ) -> Result<Curve, InsertError> {
         let sorted = self.checked_insertions(values)?;
-        let count = self.control_points().len() + sorted.len();
+        let count = self.caller_control_points().len() + sorted.len();
         if count > max_control_points {
             return Err(InsertError::TooManyControlPoints {
                 count,
@@ -107,6 +109,11 @@ impl Curve {
                     value,
                     domain: self.domain(),
                 });
+            };
+            // A periodic curve's `k_m` is its `k_0`, one knot of the periodic form.
+            let t = match self.is_periodic() {
+                true if t == self.domain().1 => self.domain().0,
+                _ => t,
             };
             snapped.push((t, index));
         }
@@ -153,6 +160,9 @@ impl Curve {
     pub(crate) fn refined(&self, inserted: &[f64]) -> Curve {
         if inserted.is_empty() {
             return self.clone();
+        }
+        if let Some(periodicity) = self.periodicity() {
+            return super::periodic::refined(self, periodicity, inserted);
         }
         let (knots, homogeneous) =
             refine(self.degree(), self.knots(), self.homogeneous(), inserted);
