@@ -443,6 +443,14 @@ impl Curve {
         }
     }
 
+    /// This curve's data as an ordinary curve (a periodic one cut open at `k_0`).
+    pub(crate) fn as_ordinary(&self) -> Curve {
+        Curve {
+            periodic: None,
+            ..self.clone()
+        }
+    }
+
     /// The same curve marked periodic (precondition: the data are a periodic curve cut open
     /// at its first knot, as [`super::periodic`] builds them).
     pub(crate) fn into_periodic(mut self, periodicity: Periodicity) -> Curve {

@@ -188,6 +188,42 @@ impl Curve {
         )
     }
 
+    /// The same curve over its domain with clamped ends (`degree + 1` equal knots at each
+    /// end, so the first and last control points are the curve's ends), as an ordinary
+    /// curve: a periodic one is cut open at `k_0`. The domain's ends are inserted up to
+    /// multiplicity `p` (Boehm), then the control points and knots outside the domain dropped
+    /// (the outermost knot of each end run has no effect on the curve in the domain, so it
+    /// becomes the end value).
+    pub fn clamped(&self) -> Curve {
+        let ordinary = self.as_ordinary();
+        let p = self.degree();
+        let (lo, hi) = self.domain();
+        let knots = self.knots();
+        let count = |v: f64| knots.iter().filter(|&&u| u == v).count();
+        let mut inserted = vec![lo; p.saturating_sub(count(lo))];
+        inserted.extend(std::iter::repeat_n(hi, p.saturating_sub(count(hi))));
+        let refined = ordinary.refined(&inserted);
+        let knots = refined.knots();
+        let last_lo = knots.iter().rposition(|&u| u == lo).unwrap_or(p);
+        let first_hi = knots.iter().position(|&u| u == hi).unwrap_or(knots.len() - p - 1);
+        let start = last_lo + 1 - p - 1;
+        let end = first_hi + p;
+        let mut clamped_knots = knots[start..=end].to_vec();
+        clamped_knots[0] = lo;
+        let last = clamped_knots.len() - 1;
+        clamped_knots[last] = hi;
+        let points = refined.control_points()[start..first_hi].to_vec();
+        let weights = refined.weights().map(|w| w[start..first_hi].to_vec());
+        Curve::from_valid_parts(
+            p,
+            self.dimension(),
+            points,
+            weights,
+            clamped_knots,
+            self.convention(),
+        )
+    }
+
     /// The knots to insert so that the cubic knot-pair method can move the point `s(t)`
     /// without moving the curve's domain: [`EDITING_KNOTS_EACH_SIDE`] knots strictly inside
     /// the domain on each side of `t` (in `(lo, t]` and in `(t, hi)`), counting those the

@@ -393,3 +393,20 @@ fn bezier_pieces_of_a_periodic_curve_cover_one_period() {
         assert_eq!(pieces[spans - 1].domain.1, hi);
     }
 }
+
+#[test]
+fn the_clamped_curve_over_a_period_is_the_same_curve() {
+    for curve in occt_curves() {
+        let clamped = curve.clamped();
+        assert!(!clamped.is_periodic());
+        let p = clamped.degree();
+        let knots = clamped.knots();
+        let (lo, hi) = curve.domain();
+        assert_eq!(clamped.domain(), (lo, hi));
+        assert!(knots[..=p].iter().all(|&u| u == lo), "{knots:?}");
+        assert!(knots[knots.len() - p - 1..].iter().all(|&u| u == hi), "{knots:?}");
+        assert!(max_difference(&curve, &clamped, 0.0) <= 1e-11 * scale(&curve));
+        // The first control point is the curve's start.
+        assert!(distance(point(&curve, lo), &clamped.control_points()[0]) <= 1e-11 * scale(&curve));
+    }
+}
