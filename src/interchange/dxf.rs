@@ -16,7 +16,8 @@
 
 use super::numbers::real;
 use super::{
-    FileError, FileLimits, Imported, ImportedCurve, check_size, exportable_curve, exportable_knots, malformed,
+    FileError, FileLimits, Imported, ImportedCurve, check_size, exportable_curve, exportable_knots,
+    malformed,
 };
 use crate::spline::{Curve, KnotForm};
 
@@ -104,7 +105,11 @@ impl SplineGroups {
             let value: f64 = group.value.parse().map_err(|_| {
                 malformed(
                     group.line + 1,
-                    format!("group {} needs a number, found {:?}", group.code, truncated(group.value)),
+                    format!(
+                        "group {} needs a number, found {:?}",
+                        group.code,
+                        truncated(group.value)
+                    ),
                 )
             })?;
             if value.is_finite() {
@@ -117,7 +122,11 @@ impl SplineGroups {
             group.value.parse().map_err(|_| {
                 malformed(
                     group.line + 1,
-                    format!("group {} needs an integer, found {:?}", group.code, truncated(group.value)),
+                    format!(
+                        "group {} needs an integer, found {:?}",
+                        group.code,
+                        truncated(group.value)
+                    ),
                 )
             })
         };
@@ -133,7 +142,10 @@ impl SplineGroups {
             20 | 30 => {
                 let axis = (group.code / 10 - 1) as usize;
                 let Some(point) = self.points.last_mut() else {
-                    return Err(malformed(group.line, "a control point's y or z before its x"));
+                    return Err(malformed(
+                        group.line,
+                        "a control point's y or z before its x",
+                    ));
                 };
                 point[axis] = number()?;
             }
@@ -211,7 +223,10 @@ enum Entity {
 pub fn read(text: &str, limits: &FileLimits) -> Result<Imported, FileError> {
     check_size(text, limits)?;
     if text.starts_with("AutoCAD Binary DXF") {
-        return Err(malformed(1, "binary DXF is not supported; send an ASCII DXF"));
+        return Err(malformed(
+            1,
+            "binary DXF is not supported; send an ASCII DXF",
+        ));
     }
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let mut groups = Groups {
@@ -256,7 +271,10 @@ pub fn read(text: &str, limits: &FileLimits) -> Result<Imported, FileError> {
             }
             ("SECTION", None) => expect_section_name = true,
             ("SECTION", Some(_)) => {
-                return Err(malformed(group.line, "a SECTION inside a SECTION (ENDSEC missing)"));
+                return Err(malformed(
+                    group.line,
+                    "a SECTION inside a SECTION (ENDSEC missing)",
+                ));
             }
             ("ENDSEC", Some(_)) => section = None,
             (_, None) => {
@@ -386,12 +404,20 @@ mod tests {
     #[test]
     fn written_curves_read_back_bit_for_bit() {
         let limits = CurveLimits::default();
-        let points = [[0.1, 1.0 / 3.0, -2.0], [1.5, 2e-9, 7.0], [3.0, 2.0, 1e300], [4.0, 0.0, 0.0]];
+        let points = [
+            [0.1, 1.0 / 3.0, -2.0],
+            [1.5, 2e-9, 7.0],
+            [3.0, 2.0, 1e300],
+            [4.0, 0.0, 0.0],
+        ];
         let knots = [0.0, 0.0, 0.0, 0.1, 0.7, 0.7, 0.7];
         let curve = Curve::new(2, &points, &knots, Some(&[1.0, 0.3, 2.0, 1.0]), &limits).unwrap();
         let back = read(&write(std::slice::from_ref(&curve)), &FileLimits::default()).unwrap();
         assert_eq!(back.curves[0].curve.knots(), curve.knots());
-        assert_eq!(back.curves[0].curve.control_points(), curve.control_points());
+        assert_eq!(
+            back.curves[0].curve.control_points(),
+            curve.control_points()
+        );
         assert_eq!(back.curves[0].curve.weights(), curve.weights());
     }
 
@@ -399,19 +425,32 @@ mod tests {
     fn malformed_and_truncated_files_are_errors() {
         let whole = spline("");
         for cut in [5, 30, whole.len() / 2, whole.len() - 4] {
-            assert!(read(&whole[..cut], &FileLimits::default()).is_err(), "{cut}");
+            assert!(
+                read(&whole[..cut], &FileLimits::default()).is_err(),
+                "{cut}"
+            );
         }
         for bad in [
             whole.replace("72\n6", "72\n7"),
             whole.replace("40\n1.0\n41", "40\nx\n41"),
             whole.replace("71\n2\n", ""),
             whole.replace("41\n0.5\n", ""),
-            whole.replace("10\n2.0", "20\n2.0").replacen("10\n0.0\n20\n0.0\n30\n0.0\n", "20\n0.0\n", 1),
+            whole.replace("10\n2.0", "20\n2.0").replacen(
+                "10\n0.0\n20\n0.0\n30\n0.0\n",
+                "20\n0.0\n",
+                1,
+            ),
             whole.replace("ENDSEC\n0\nEOF", "EOF"),
         ] {
             assert!(read(&bad, &FileLimits::default()).is_err(), "{bad}");
         }
-        let few = FileLimits { max_entities: 2, ..FileLimits::default() };
-        assert!(matches!(read(&whole, &few), Err(FileError::TooManyEntities { .. })));
+        let few = FileLimits {
+            max_entities: 2,
+            ..FileLimits::default()
+        };
+        assert!(matches!(
+            read(&whole, &few),
+            Err(FileError::TooManyEntities { .. })
+        ));
     }
 }

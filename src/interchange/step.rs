@@ -19,8 +19,8 @@ use std::collections::HashMap;
 
 use super::numbers::real;
 use super::{
-    FileError, FileLimits, Imported, ImportedCurve, MAX_NESTING, check_size, exportable_curve, exportable_knots,
-    malformed,
+    FileError, FileLimits, Imported, ImportedCurve, MAX_NESTING, check_size, exportable_curve,
+    exportable_knots, malformed,
 };
 use crate::spline::{Curve, KnotForm, distinct_knots};
 
@@ -527,7 +527,11 @@ pub fn read(text: &str, limits: &FileLimits) -> Result<Imported, FileError> {
                 parser.expect(Token::Semicolon, "; after DATA")?;
                 data_section(&mut parser, &mut found, &mut entities, limits)?;
             }
-            Token::Keyword(k) if k.eq_ignore_ascii_case("ANCHOR") || k.eq_ignore_ascii_case("REFERENCE") || k.eq_ignore_ascii_case("SIGNATURE") => {
+            Token::Keyword(k)
+                if k.eq_ignore_ascii_case("ANCHOR")
+                    || k.eq_ignore_ascii_case("REFERENCE")
+                    || k.eq_ignore_ascii_case("SIGNATURE") =>
+            {
                 return Err(malformed(
                     parser.line(),
                     format!("{k} sections are not supported"),
@@ -606,7 +610,10 @@ fn data_section<'a>(
                         other => {
                             return Err(malformed(
                                 parser.line(),
-                                format!("expected a record of a complex entity, found {}", describe(other)),
+                                format!(
+                                    "expected a record of a complex entity, found {}",
+                                    describe(other)
+                                ),
                             ));
                         }
                     }
@@ -621,7 +628,8 @@ fn data_section<'a>(
             }
         };
         parser.expect(Token::Semicolon, "; after an instance")?;
-        let is_point = records.len() == 1 && records[0].keyword.eq_ignore_ascii_case("CARTESIAN_POINT");
+        let is_point =
+            records.len() == 1 && records[0].keyword.eq_ignore_ascii_case("CARTESIAN_POINT");
         if found.names.insert(id, is_point).is_some() {
             return Err(malformed(line, format!("#{id} is defined twice")));
         }
@@ -637,14 +645,15 @@ fn keep<'a>(
     records: Vec<Record<'a>>,
     found: &mut Found<'a>,
 ) -> Result<(), FileError> {
-    let has = |name: &str| records.iter().position(|r| r.keyword.eq_ignore_ascii_case(name));
+    let has = |name: &str| {
+        records
+            .iter()
+            .position(|r| r.keyword.eq_ignore_ascii_case(name))
+    };
     if let [record] = &records[..] {
         if record.keyword.eq_ignore_ascii_case("CARTESIAN_POINT") {
             let coordinates = match &record.parameters[..] {
-                [_, Value::List(values)] => values
-                    .iter()
-                    .map(number)
-                    .collect::<Option<Vec<f64>>>(),
+                [_, Value::List(values)] => values.iter().map(number).collect::<Option<Vec<f64>>>(),
                 _ => None,
             };
             let Some(coordinates) = coordinates else {
@@ -659,7 +668,13 @@ fn keep<'a>(
     }
     if let Some(with_knots) = has("B_SPLINE_CURVE_WITH_KNOTS") {
         let entity = if records.len() == 1 {
-            match <[Value; 9]>::try_from(records.into_iter().next().map(|r| r.parameters).unwrap_or_default()) {
+            match <[Value; 9]>::try_from(
+                records
+                    .into_iter()
+                    .next()
+                    .map(|r| r.parameters)
+                    .unwrap_or_default(),
+            ) {
                 Ok([_, degree, points, _, _, _, multiplicities, knots, _]) => CurveEntity {
                     id,
                     line,
@@ -680,21 +695,30 @@ fn keep<'a>(
             let Some(base) = has("B_SPLINE_CURVE") else {
                 return Err(malformed(
                     line,
-                    format!("#{id}: a complex B_SPLINE_CURVE_WITH_KNOTS needs its B_SPLINE_CURVE record"),
+                    format!(
+                        "#{id}: a complex B_SPLINE_CURVE_WITH_KNOTS needs its B_SPLINE_CURVE record"
+                    ),
                 ));
             };
             let rational = has("RATIONAL_B_SPLINE_CURVE");
             let mut records: Vec<Option<Record>> = records.into_iter().map(Some).collect();
             let mut take = |index: usize, count: usize, name: &str| {
-                let parameters = records[index].take().map(|r| r.parameters).unwrap_or_default();
+                let parameters = records[index]
+                    .take()
+                    .map(|r| r.parameters)
+                    .unwrap_or_default();
                 if parameters.len() == count {
                     Ok(parameters)
                 } else {
-                    Err(malformed(line, format!("#{id}: {name} has {count} parameters here")))
+                    Err(malformed(
+                        line,
+                        format!("#{id}: {name} has {count} parameters here"),
+                    ))
                 }
             };
-            let [degree, points, _, _, _] = <[Value; 5]>::try_from(take(base, 5, "B_SPLINE_CURVE")?)
-                .map_err(|_| malformed(line, "B_SPLINE_CURVE"))?;
+            let [degree, points, _, _, _] =
+                <[Value; 5]>::try_from(take(base, 5, "B_SPLINE_CURVE")?)
+                    .map_err(|_| malformed(line, "B_SPLINE_CURVE"))?;
             let [multiplicities, knots, _] =
                 <[Value; 3]>::try_from(take(with_knots, 3, "B_SPLINE_CURVE_WITH_KNOTS")?)
                     .map_err(|_| malformed(line, "B_SPLINE_CURVE_WITH_KNOTS"))?;
@@ -715,10 +739,11 @@ fn keep<'a>(
         found.curves.push(entity);
         return Ok(());
     }
-    if records
-        .iter()
-        .any(|r| OTHER_CURVES.iter().any(|c| r.keyword.eq_ignore_ascii_case(c)))
-    {
+    if records.iter().any(|r| {
+        OTHER_CURVES
+            .iter()
+            .any(|c| r.keyword.eq_ignore_ascii_case(c))
+    }) {
         found.skipped += 1;
     }
     Ok(())
@@ -941,7 +966,10 @@ mod tests {
         let cubic = &imported.curves[0];
         assert_eq!(cubic.source, "#5");
         assert_eq!(cubic.curve.convention(), KnotConvention::Multiplicities);
-        assert_eq!(cubic.curve.knots(), &[0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0]);
+        assert_eq!(
+            cubic.curve.knots(),
+            &[0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0]
+        );
         let conic = &imported.curves[1].curve;
         assert_eq!(conic.weights(), Some(&[1.0, 0.5, 1.0][..]));
         assert_eq!(conic.degree(), 2);
@@ -950,20 +978,41 @@ mod tests {
     #[test]
     fn written_curves_read_back_bit_for_bit() {
         let limits = CurveLimits::default();
-        let points = [[0.1, 1.0 / 3.0, -2.0], [1.5, 2e-9, 7.0], [3.0, 2.0, 1e300], [4.0, 0.0, 0.0]];
+        let points = [
+            [0.1, 1.0 / 3.0, -2.0],
+            [1.5, 2e-9, 7.0],
+            [3.0, 2.0, 1e300],
+            [4.0, 0.0, 0.0],
+        ];
         let knots = [0.0, 0.0, 0.0, 0.1, 0.7, 0.7, 0.7];
         let spatial = Curve::new(2, &points, &knots, Some(&[1.0, 0.3, 2.0, 1.0]), &limits).unwrap();
         let planar_points = [[0.0, 0.0], [1.0, 2.0], [3.0, 2.0], [4.0, 0.0]];
-        let planar = Curve::new(3, &planar_points, &[0.0, 0.0, 0.0, 1.0, 1.0, 1.0], None, &limits).unwrap();
+        let planar = Curve::new(
+            3,
+            &planar_points,
+            &[0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
+            None,
+            &limits,
+        )
+        .unwrap();
         let text = write(&[spatial.clone(), planar.clone()]);
         let back = read(&text, &FileLimits::default()).unwrap();
         assert_eq!(back.skipped, 0);
         assert_eq!(back.curves[0].curve.knots(), spatial.knots());
-        assert_eq!(back.curves[0].curve.control_points(), spatial.control_points());
+        assert_eq!(
+            back.curves[0].curve.control_points(),
+            spatial.control_points()
+        );
         assert_eq!(back.curves[0].curve.weights(), spatial.weights());
         // 2D as z = 0.
-        assert_eq!(back.curves[1].curve.control_points(), planar.control_points());
-        assert_eq!(back.curves[1].curve.dimension(), crate::spline::Dimension::Three);
+        assert_eq!(
+            back.curves[1].curve.control_points(),
+            planar.control_points()
+        );
+        assert_eq!(
+            back.curves[1].curve.dimension(),
+            crate::spline::Dimension::Three
+        );
     }
 
     #[test]
@@ -971,7 +1020,10 @@ mod tests {
         let whole = file(CUBIC);
         for cut in [10, 40, 100, whole.len() - 5, whole.len() - 20] {
             let error = read(&whole[..cut], &limits()).unwrap_err();
-            assert!(matches!(error, FileError::Malformed { .. }), "{cut}: {error}");
+            assert!(
+                matches!(error, FileError::Malformed { .. }),
+                "{cut}: {error}"
+            );
         }
         let broken = [
             "#1=CARTESIAN_POINT('',(0.,0.));\n#1=CARTESIAN_POINT('',(0.,0.));",
@@ -986,7 +1038,10 @@ mod tests {
         ];
         for data in broken {
             let error = read(&file(data), &limits()).unwrap_err();
-            assert!(matches!(error, FileError::Malformed { .. }), "{data}: {error}");
+            assert!(
+                matches!(error, FileError::Malformed { .. }),
+                "{data}: {error}"
+            );
         }
         let error = read(&file(&CUBIC.replace("(4,4)", "(4,5)")), &limits()).unwrap_err();
         assert!(matches!(error, FileError::InvalidCurve { .. }), "{error}");
@@ -994,13 +1049,31 @@ mod tests {
 
     #[test]
     fn limits_are_checked() {
-        let small = FileLimits { max_bytes: 50, ..limits() };
-        assert!(matches!(read(&file(CUBIC), &small), Err(FileError::TooLarge { .. })));
-        let few = FileLimits { max_entities: 3, ..limits() };
-        assert!(matches!(read(&file(CUBIC), &few), Err(FileError::TooManyEntities { max: 3 })));
+        let small = FileLimits {
+            max_bytes: 50,
+            ..limits()
+        };
+        assert!(matches!(
+            read(&file(CUBIC), &small),
+            Err(FileError::TooLarge { .. })
+        ));
+        let few = FileLimits {
+            max_entities: 3,
+            ..limits()
+        };
+        assert!(matches!(
+            read(&file(CUBIC), &few),
+            Err(FileError::TooManyEntities { max: 3 })
+        ));
         let deep = format!("#1=X({}1{});", "(".repeat(40), ")".repeat(40));
-        assert!(matches!(read(&file(&deep), &limits()), Err(FileError::TooDeep { .. })));
+        assert!(matches!(
+            read(&file(&deep), &limits()),
+            Err(FileError::TooDeep { .. })
+        ));
         let typed_deep = format!("#1=X({}1{});", "A(".repeat(40), ")".repeat(40));
-        assert!(matches!(read(&file(&typed_deep), &limits()), Err(FileError::TooDeep { .. })));
+        assert!(matches!(
+            read(&file(&typed_deep), &limits()),
+            Err(FileError::TooDeep { .. })
+        ));
     }
 }

@@ -205,7 +205,10 @@ impl Curve {
         let refined = ordinary.refined(&inserted);
         let knots = refined.knots();
         let last_lo = knots.iter().rposition(|&u| u == lo).unwrap_or(p);
-        let first_hi = knots.iter().position(|&u| u == hi).unwrap_or(knots.len() - p - 1);
+        let first_hi = knots
+            .iter()
+            .position(|&u| u == hi)
+            .unwrap_or(knots.len() - p - 1);
         let start = last_lo + 1 - p - 1;
         let end = first_hi + p;
         let mut clamped_knots = knots[start..=end].to_vec();

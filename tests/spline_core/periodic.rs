@@ -404,7 +404,10 @@ fn the_clamped_curve_over_a_period_is_the_same_curve() {
         let (lo, hi) = curve.domain();
         assert_eq!(clamped.domain(), (lo, hi));
         assert!(knots[..=p].iter().all(|&u| u == lo), "{knots:?}");
-        assert!(knots[knots.len() - p - 1..].iter().all(|&u| u == hi), "{knots:?}");
+        assert!(
+            knots[knots.len() - p - 1..].iter().all(|&u| u == hi),
+            "{knots:?}"
+        );
         assert!(max_difference(&curve, &clamped, 0.0) <= 1e-11 * scale(&curve));
         // The first control point is the curve's start.
         assert!(distance(point(&curve, lo), &clamped.control_points()[0]) <= 1e-11 * scale(&curve));

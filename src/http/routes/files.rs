@@ -57,7 +57,10 @@ fn file_limits(limits: &Limits, curve_limits: &CurveLimits) -> FileLimits {
     }
 }
 
-fn import_request(request: &ImportRequest, limits: &FileLimits) -> Result<ImportResponse, ApiError> {
+fn import_request(
+    request: &ImportRequest,
+    limits: &FileLimits,
+) -> Result<ImportResponse, ApiError> {
     let imported = match request.format {
         FileFormat::Step => interchange::step::read(&request.data, limits),
         FileFormat::Dxf => interchange::dxf::read(&request.data, limits),
@@ -146,7 +149,8 @@ fn export_request(
     let mut curves = Vec::with_capacity(request.curves.len());
     for (index, body) in request.curves.iter().enumerate() {
         let at = JsonPointer::from("/curves").push(index).to_string();
-        if let Some(curve) = body.parse_collecting_allowing_periodic(curve_limits, &at, &mut errors) {
+        if let Some(curve) = body.parse_collecting_allowing_periodic(curve_limits, &at, &mut errors)
+        {
             curves.push(curve);
         }
         if errors.len() >= MAX_LISTED_ERRORS {
