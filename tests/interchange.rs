@@ -6,8 +6,11 @@
 use knotshape::interchange::{FileError, FileLimits, dxf, step};
 
 fn text(name: &str) -> String {
-    std::fs::read_to_string(format!("{}/tests/data/interop/{name}", env!("CARGO_MANIFEST_DIR")))
-        .unwrap()
+    std::fs::read_to_string(format!(
+        "{}/tests/data/interop/{name}",
+        env!("CARGO_MANIFEST_DIR")
+    ))
+    .unwrap()
 }
 
 #[test]
@@ -25,11 +28,17 @@ fn every_b_spline_curve_of_real_step_files_is_read() {
             let definition = format!("#{number}=");
             let compact: String = file.split_whitespace().collect();
             let at = compact.find(&definition).unwrap();
-            assert!(compact[at..at + 200].contains("B_SPLINE_CURVE"), "{name} {number}");
+            assert!(
+                compact[at..at + 200].contains("B_SPLINE_CURVE"),
+                "{name} {number}"
+            );
             let d = found.curve.dimension().count();
             assert!(dimensions.contains(&d), "{name}: {d}");
         }
-        assert!(imported.skipped > 0, "{name}: lines and circles are skipped");
+        assert!(
+            imported.skipped > 0,
+            "{name}: lines and circles are skipped"
+        );
     }
 }
 
