@@ -24,7 +24,7 @@ mod tests {
             -2.5,
             0.1,
             1.0 / 3.0,
-            6.283185307179586,
+            std::f64::consts::TAU,
             1e-300,
             f64::MAX,
             f64::MIN_POSITIVE,

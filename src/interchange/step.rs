@@ -891,23 +891,20 @@ pub fn write(curves: &[Curve]) -> String {
     let mut curve_ids = Vec::with_capacity(curves.len());
     for curve in curves.iter().map(exportable_curve) {
         let curve = &curve;
-        let point_ids: Vec<u64> = curve
-            .control_points()
-            .iter()
-            .map(|point| {
-                let id = next_id;
-                next_id += 1;
-                out.push_str(&format!(
-                    "#{id}=CARTESIAN_POINT('',({},{},{}));\n",
-                    real(point[0]),
-                    real(point[1]),
-                    real(point[2])
-                ));
-                id
-            })
-            .collect();
-        let id = next_id;
-        next_id += 1;
+        let first_point = next_id;
+        for (offset, point) in curve.control_points().iter().enumerate() {
+            out.push_str(&format!(
+                "#{}=CARTESIAN_POINT('',({},{},{}));\n",
+                first_point + offset as u64,
+                real(point[0]),
+                real(point[1]),
+                real(point[2])
+            ));
+        }
+        let point_ids: Vec<u64> =
+            (first_point..first_point + curve.control_points().len() as u64).collect();
+        let id = first_point + point_ids.len() as u64;
+        next_id = id + 1;
         curve_ids.push(id);
         let (knots, multiplicities) = distinct_knots(&exportable_knots(curve));
         let points = joined(point_ids.iter().map(|id| format!("#{id}")));

@@ -138,10 +138,7 @@ async fn periodic_curves_evaluate_repeat_insert_and_split_into_pieces() {
     let refined = &body["curve"];
     assert_eq!(refined["periodic"], true);
     assert_eq!(refined["control_points"].as_array().unwrap().len(), 8);
-    assert_eq!(
-        refined["multiplicities"],
-        json!([2, 1, 1, 1, 1, 1, 1, 2])
-    );
+    assert_eq!(refined["multiplicities"], json!([2, 1, 1, 1, 1, 1, 1, 2]));
     let probes: Vec<f64> = (0..=30).map(|i| i as f64 / 10.0).collect();
     let (_, before) = app
         .post_json(
@@ -518,7 +515,11 @@ async fn bad_files_and_exports_are_4xx_as_a_whole() {
             422,
             Some("/curves"),
         ),
-        (json!({"format": "svg", "curves": [good]}), 422, Some("/format")),
+        (
+            json!({"format": "svg", "curves": [good]}),
+            422,
+            Some("/format"),
+        ),
     ];
     for (request, status, pointer) in exports {
         let (got, body) = app.post_json("/v1/curves/export", &request).await;
