@@ -8,6 +8,7 @@ use crate::http::curve::CurveBody;
 /// A curve file format.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, ToSchema)]
 #[serde(rename_all = "lowercase")]
+#[schema(example = json!("step"))]
 pub enum FileFormat {
     /// STEP (ISO 10303-21 exchange structure): `B_SPLINE_CURVE_WITH_KNOTS` and its rational
     /// complex form.
