@@ -67,6 +67,16 @@ pub struct Config {
     #[arg(long, env = "KNOTSHAPE_MAX_POLYGON_VERTICES", default_value_t = Limits::DEFAULT.max_polygon_vertices, global = true)]
     pub max_polygon_vertices: usize,
 
+    /// Largest file text accepted by `/v1/curves/import`, in bytes (larger: 422). The request
+    /// body holding it must also fit `max_body_bytes`.
+    #[arg(long, env = "KNOTSHAPE_MAX_FILE_BYTES", default_value_t = Limits::DEFAULT.max_file_bytes, global = true)]
+    pub max_file_bytes: usize,
+
+    /// Largest number of entities (STEP instances, DXF entities) in an imported file, and of
+    /// curves in an exported one (more: 422).
+    #[arg(long, env = "KNOTSHAPE_MAX_FILE_ENTITIES", default_value_t = Limits::DEFAULT.max_file_entities, global = true)]
+    pub max_file_entities: usize,
+
     /// Time a request may take, in milliseconds, before it is answered with 503.
     #[arg(
         long,
@@ -183,6 +193,8 @@ impl Default for Config {
             max_parameters: Limits::DEFAULT.max_parameters,
             max_derivative_order: Limits::DEFAULT.max_derivative_order,
             max_polygon_vertices: Limits::DEFAULT.max_polygon_vertices,
+            max_file_bytes: Limits::DEFAULT.max_file_bytes,
+            max_file_entities: Limits::DEFAULT.max_file_entities,
             request_timeout_ms: 10_000,
             concurrency_limit: 64,
             retry_after_secs: 1,
@@ -207,6 +219,8 @@ impl Config {
             max_parameters: self.max_parameters,
             max_derivative_order: self.max_derivative_order,
             max_polygon_vertices: self.max_polygon_vertices,
+            max_file_bytes: self.max_file_bytes,
+            max_file_entities: self.max_file_entities,
         }
     }
 
@@ -309,17 +323,23 @@ pub struct Limits {
     pub max_derivative_order: usize,
     /// Vertices per region polygon.
     pub max_polygon_vertices: usize,
+    /// Bytes of an imported file's text.
+    pub max_file_bytes: usize,
+    /// Entities of an imported file, curves of an exported one.
+    pub max_file_entities: usize,
 }
 
 impl Limits {
     /// The defaults: 1 MiB bodies, 10 000 control points, 10 000 parameters, derivatives up to
-    /// order 8, 2 000 vertices per polygon.
+    /// order 8, 2 000 vertices per polygon, files of 1 MiB and 100 000 entities.
     pub const DEFAULT: Limits = Limits {
         max_body_bytes: 1024 * 1024,
         max_control_points: 10_000,
         max_parameters: 10_000,
         max_derivative_order: 8,
         max_polygon_vertices: 2_000,
+        max_file_bytes: 1024 * 1024,
+        max_file_entities: 100_000,
     };
 }
 

@@ -7,6 +7,7 @@
 //! as they are documented. The input's first byte picks the endpoint (modulo their number),
 //! the rest is the body.
 
+pub mod files;
 pub mod structured;
 
 use axum::Router;

@@ -4,6 +4,7 @@
 pub mod config;
 pub mod fuzzing;
 pub mod http;
+pub mod interchange;
 pub mod shape;
 pub mod spline;
 pub mod telemetry;

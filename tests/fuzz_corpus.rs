@@ -71,3 +71,37 @@ fn structured_cases_pass_the_fuzz_check() {
         .collect();
     assert!(findings.is_empty(), "{}", findings.join("\n"));
 }
+
+/// The file readers' check (`knotshape::fuzzing::files`) on the committed corpora of the
+/// `step_import` and `dxf_import` targets (seeds and the fuzzers' inputs), and on the real STEP
+/// files of tests/data/interop: no panic, and what is read writes and reads back unchanged.
+#[test]
+fn file_corpora_pass_the_fuzz_check() {
+    use knotshape::fuzzing::files::{check_dxf, check_step};
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    type Check = fn(&[u8]) -> Result<(), String>;
+    let targets: [(&str, Check, usize); 2] =
+        [("step_import", check_step, 3), ("dxf_import", check_dxf, 2)];
+    for (target, check, at_least) in targets {
+        let mut files: Vec<_> = std::fs::read_dir(root.join("fuzz/corpus").join(target))
+            .expect("the committed corpus")
+            .map(|entry| entry.unwrap().path())
+            .collect();
+        files.sort();
+        assert!(
+            files.len() >= at_least,
+            "{target}: only {} corpus files",
+            files.len()
+        );
+        if target == "step_import" {
+            files.push(root.join("tests/data/interop/splinecage.stp"));
+            files.push(root.join("tests/data/interop/screw.step"));
+        }
+        for file in &files {
+            let input = std::fs::read(file).unwrap();
+            if let Err(finding) = check(&input) {
+                panic!("{}: {finding}", file.display());
+            }
+        }
+    }
+}

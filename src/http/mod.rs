@@ -38,7 +38,7 @@ use utoipa_axum::routes;
 
 use crate::config::Config;
 use error::{FieldError, PROBLEM_JSON, Problem};
-use routes::{closest, curves, editor, ops, shape, toolkit};
+use routes::{closest, curves, editor, files, ops, shape, toolkit};
 pub use server::{Server, shutdown_signal};
 pub use state::{AppState, Readiness};
 
@@ -104,6 +104,8 @@ fn v1_routes() -> OpenApiRouter<AppState> {
         .routes(routes!(closest::closest_point))
         .routes(routes!(toolkit::insert_knots))
         .routes(routes!(toolkit::bezier))
+        .routes(routes!(files::import))
+        .routes(routes!(files::export))
         .routes(routes!(shape::membership))
         .routes(routes!(shape::regions))
         .routes(routes!(shape::solve))
@@ -172,7 +174,8 @@ pub fn openapi_json() -> String {
             (Juhász & Hoffmann; Tornai's knot pairs Ω1–Ω6). Every error is an RFC 9457 \
             `application/problem+json` document; validation errors list JSON pointers into \
             the request body. Knot vectors may be full or trimmed (openNURBS), detected by \
-            length; answers use the caller's convention."
+            length, or distinct values with multiplicities (STEP, Open CASCADE; also periodic); \
+            answers use the caller's form."
     ),
     tags(
         (name = "curves", description = "Curve evaluation, polylines, knot insertion, Bézier pieces and the knot-moving envelope"),
@@ -279,6 +282,6 @@ mod tests {
     fn the_document_names_every_route() {
         let document = openapi();
         let paths: Vec<&String> = document.paths.paths.keys().collect();
-        assert_eq!(paths.len(), 12, "{paths:?}");
+        assert_eq!(paths.len(), 14, "{paths:?}");
     }
 }

@@ -1,10 +1,12 @@
-//! The validated curve type: degree, control points, knots (either convention) and weights.
+//! The validated curve type: degree, control points, knots (a flat vector in either
+//! convention, or distinct values with multiplicities, possibly periodic) and weights.
 //!
 //! One concept, kept whole: the type, every rule of its validation with the typed errors that
 //! name the field, the conventions and the derived curves (other knots or control points,
 //! ends snapped onto the domain); a third of the file is the tests of those rules.
 
 use super::basis::{MAX_DEGREE, basis_functions, find_span};
+use super::periodic::Periodicity;
 use super::vector::Point;
 
 /// A parameter outside the domain by at most this fraction of the domain's length is taken as
@@ -23,6 +25,11 @@ pub enum KnotConvention {
     Full,
     /// openNURBS / Rhino: the full vector without its first and last value (`n + p` values).
     Trimmed,
+    /// Distinct increasing values with their multiplicities (STEP, IGES, Open CASCADE); the
+    /// full vector is those values each repeated its multiplicity times. Knot *indices* in
+    /// this form are indices into that full (flat) vector, as in [`KnotConvention::Full`]:
+    /// an index names one knot of a run, which a run's distinct value cannot.
+    Multiplicities,
 }
 
 impl KnotConvention {
@@ -30,7 +37,7 @@ impl KnotConvention {
     /// that the trimmed convention leaves out).
     pub fn caller_index(self, full_index: usize, full_len: usize) -> Option<usize> {
         match self {
-            KnotConvention::Full => Some(full_index),
+            KnotConvention::Full | KnotConvention::Multiplicities => Some(full_index),
             KnotConvention::Trimmed if full_index == 0 || full_index + 1 >= full_len => None,
             KnotConvention::Trimmed => Some(full_index - 1),
         }
@@ -39,10 +46,61 @@ impl KnotConvention {
     /// The full-vector index of the caller's index `caller_index`.
     pub fn full_index(self, caller_index: usize) -> usize {
         match self {
-            KnotConvention::Full => caller_index,
+            KnotConvention::Full | KnotConvention::Multiplicities => caller_index,
             KnotConvention::Trimmed => caller_index + 1,
         }
     }
+}
+
+/// Knots as a caller writes them, before validation ([`Curve::from_knot_form`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum KnotForm<'a> {
+    /// A flat vector: full (`n + p + 2` values) or trimmed (`n + p`), detected by length.
+    Flat(&'a [f64]),
+    /// Distinct increasing values and their multiplicities, summing to `n + p + 2`.
+    Multiplicities {
+        /// The distinct values, strictly increasing.
+        knots: &'a [f64],
+        /// How often each value repeats in the full vector (each `>= 1`).
+        multiplicities: &'a [usize],
+    },
+    /// Open CASCADE's periodic form (`Geom_BSplineCurve` with `Periodic`): the distinct values
+    /// `k_0 < … < k_m` of one period `T = k_m - k_0` with multiplicities; the first and the
+    /// last multiplicity are equal and at most the degree; the control points are not
+    /// repeated: there are `Σ multiplicities - m_m` of them (see [`super::periodic`]).
+    Periodic {
+        /// The distinct values of one period, strictly increasing.
+        knots: &'a [f64],
+        /// Their multiplicities.
+        multiplicities: &'a [usize],
+    },
+}
+
+/// A curve's knots in the caller's form, for an answer ([`Curve::caller_knots`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct CallerKnots {
+    /// The flat vector (full or trimmed), or the distinct values.
+    pub knots: Vec<f64>,
+    /// The multiplicities, in the multiplicities and the periodic form.
+    pub multiplicities: Option<Vec<usize>>,
+    /// Whether the form is periodic.
+    pub periodic: bool,
+}
+
+/// The distinct values of a non-decreasing knot vector and how often each repeats.
+pub fn distinct_knots(full: &[f64]) -> (Vec<f64>, Vec<usize>) {
+    let mut values: Vec<f64> = Vec::new();
+    let mut multiplicities: Vec<usize> = Vec::new();
+    for &u in full {
+        match (values.last(), multiplicities.last_mut()) {
+            (Some(&last), Some(count)) if last == u => *count += 1,
+            _ => {
+                values.push(u);
+                multiplicities.push(1);
+            }
+        }
+    }
+    (values, multiplicities)
 }
 
 /// Whether control points are planar or spatial.
@@ -98,8 +156,14 @@ pub enum CurveField {
     },
     /// The knot vector as a whole.
     Knots,
-    /// One knot, by the caller's index.
+    /// One knot, by the caller's index (in the multiplicities forms: of the distinct values).
     Knot(usize),
+    /// The multiplicity list as a whole.
+    Multiplicities,
+    /// One multiplicity.
+    Multiplicity(usize),
+    /// The periodic flag.
+    Periodic,
     /// The weight list as a whole.
     Weights,
     /// One weight.
@@ -153,6 +217,46 @@ pub enum CurveError {
     },
     #[error("the curve's domain [u_p, u_(n+1)] is empty: the knots there are all equal")]
     EmptyDomain,
+    #[error(
+        "{knots} knots but {multiplicities} multiplicities given; give one multiplicity per knot"
+    )]
+    MultiplicityCountMismatch { knots: usize, multiplicities: usize },
+    #[error("knot {index} is not greater than knot {}: with multiplicities the knots are distinct, increasing values", index - 1)]
+    KnotNotIncreasing { index: usize },
+    #[error("multiplicity {index} is 0; each knot appears at least once")]
+    ZeroMultiplicity { index: usize },
+    #[error("multiplicity {index} is {multiplicity}; at most {max} allowed here ({rule})")]
+    MultiplicityTooHigh {
+        index: usize,
+        multiplicity: usize,
+        max: usize,
+        rule: &'static str,
+    },
+    #[error(
+        "the multiplicities sum to {sum}; a curve with {control_points} control points of degree {degree} needs {expected} (control points + degree + 1)"
+    )]
+    WrongMultiplicitySum {
+        sum: usize,
+        control_points: usize,
+        degree: usize,
+        expected: usize,
+    },
+    #[error("a periodic curve needs knots with `multiplicities` (Open CASCADE's periodic form)")]
+    PeriodicNeedsMultiplicities,
+    #[error("a periodic curve needs at least two knots (the two ends of one period)")]
+    PeriodicTooFewKnots,
+    #[error(
+        "the first and last multiplicity of a periodic curve must be equal: {first} and {last} given"
+    )]
+    PeriodicEndsDiffer {
+        first: usize,
+        last: usize,
+        last_index: usize,
+    },
+    #[error(
+        "{count} control points given; a periodic curve with these multiplicities has {expected} (the sum of all multiplicities but the last)"
+    )]
+    PeriodicControlPointCount { count: usize, expected: usize },
     #[error("{count} weights given; expected one per control point ({expected})")]
     WrongWeightCount { count: usize, expected: usize },
     #[error("weight {index} is not a finite number")]
@@ -181,10 +285,22 @@ impl CurveError {
                 index,
                 coordinate: Some(coordinate),
             },
-            CurveError::WrongKnotCount { .. } | CurveError::EmptyDomain => CurveField::Knots,
+            CurveError::WrongKnotCount { .. }
+            | CurveError::EmptyDomain
+            | CurveError::PeriodicTooFewKnots => CurveField::Knots,
             CurveError::NonFiniteKnot { index }
             | CurveError::DecreasingKnot { index }
+            | CurveError::KnotNotIncreasing { index }
             | CurveError::KnotMultiplicityTooHigh { index, .. } => CurveField::Knot(index),
+            CurveError::MultiplicityCountMismatch { .. }
+            | CurveError::WrongMultiplicitySum { .. }
+            | CurveError::PeriodicControlPointCount { .. } => CurveField::Multiplicities,
+            CurveError::ZeroMultiplicity { index }
+            | CurveError::MultiplicityTooHigh { index, .. } => CurveField::Multiplicity(index),
+            CurveError::PeriodicEndsDiffer { last_index, .. } => {
+                CurveField::Multiplicity(last_index)
+            }
+            CurveError::PeriodicNeedsMultiplicities => CurveField::Periodic,
             CurveError::WrongWeightCount { .. } => CurveField::Weights,
             CurveError::NonFiniteWeight { index } | CurveError::NonPositiveWeight { index } => {
                 CurveField::Weight(index)
@@ -193,12 +309,17 @@ impl CurveError {
     }
 }
 
-/// A B-spline or NURBS curve whose data obey every rule; built only by [`Curve::new`] (or
-/// derived from another valid curve), so the rest of the core never sees invalid data.
+/// A B-spline or NURBS curve whose data obey every rule; built only by [`Curve::new`] or
+/// [`Curve::from_knot_form`] (or derived from another valid curve), so the rest of the core
+/// never sees invalid data.
 ///
 /// Invariants: `1 <= p <= MAX_DEGREE`, `n + 1 >= p + 1` control points of one dimension,
 /// a finite non-decreasing full knot vector of `n + p + 2` values with `u_p < u_{n+1}`,
 /// finite positive weights when rational.
+///
+/// A periodic curve is stored cut open at its first knot `k_0` (see [`super::periodic`]): the
+/// fields then hold the ordinary curve over one period `[k_0, k_0 + T]`, whose last poles
+/// repeat the first ones; `periodic` remembers how to write it in the periodic form again.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Curve {
     degree: usize,
@@ -209,6 +330,7 @@ pub struct Curve {
     homogeneous: Vec<[f64; 4]>,
     knots: Vec<f64>,
     convention: KnotConvention,
+    periodic: Option<Periodicity>,
 }
 
 impl Curve {
@@ -227,104 +349,68 @@ impl Curve {
         weights: Option<&[f64]>,
         limits: &CurveLimits,
     ) -> Result<Curve, CurveError> {
-        if degree < 1 {
-            return Err(CurveError::DegreeTooLow);
-        }
-        let max_degree = limits.max_degree.min(MAX_DEGREE);
-        if degree > max_degree {
-            return Err(CurveError::DegreeTooHigh {
-                degree,
-                max: max_degree,
-            });
-        }
-        let count = control_points.len();
-        if count < degree + 1 {
-            return Err(CurveError::TooFewControlPoints {
-                count,
-                degree,
-                needed: degree + 1,
-            });
-        }
-        if count > limits.max_control_points {
-            return Err(CurveError::TooManyControlPoints {
-                count,
-                max: limits.max_control_points,
-            });
-        }
-        let expected = control_points[0].as_ref().len();
-        let dimension = match expected {
-            2 => Dimension::Two,
-            3 => Dimension::Three,
-            _ => return Err(CurveError::UnsupportedDimension { len: expected }),
-        };
-        let mut points = Vec::with_capacity(count);
-        for (index, raw) in control_points.iter().enumerate() {
-            let raw = raw.as_ref();
-            if raw.len() != expected {
-                return Err(CurveError::WrongDimension {
-                    index,
-                    len: raw.len(),
-                    expected,
-                });
-            }
-            let mut point = [0.0; 3];
-            for (coordinate, &value) in raw.iter().enumerate() {
-                if !value.is_finite() {
-                    return Err(CurveError::NonFiniteCoordinate { index, coordinate });
-                }
-                point[coordinate] = value;
-            }
-            points.push(point);
-        }
+        Curve::from_knot_form(
+            degree,
+            control_points,
+            KnotForm::Flat(knots),
+            weights,
+            limits,
+        )
+    }
+
+    /// Validates raw curve data with knots in any [`KnotForm`].
+    ///
+    /// The rules of [`Curve::new`] for the degree, control points and weights (a periodic
+    /// curve needs only `max(degree, 2)` control points: its first `degree + 1 - m_0` come
+    /// again after the last). Then, for the multiplicities form: one multiplicity per knot;
+    /// finite, strictly increasing knots; every multiplicity `>= 1`, at most `degree + 1`
+    /// inside and `degree + 2` at the two ends (as a full vector's end runs); the sum
+    /// `n + p + 2`; a non-empty domain. For the periodic form: at least two knots; finite,
+    /// strictly increasing knots; every multiplicity `>= 1`, at most `degree + 1` inside; the
+    /// first and last equal and at most `degree`; `Σ m_i - m_last` control points.
+    pub fn from_knot_form(
+        degree: usize,
+        control_points: &[impl AsRef<[f64]>],
+        knots: KnotForm<'_>,
+        weights: Option<&[f64]>,
+        limits: &CurveLimits,
+    ) -> Result<Curve, CurveError> {
+        let periodic = matches!(knots, KnotForm::Periodic { .. });
+        let (dimension, points) = checked_points(degree, control_points, periodic, limits)?;
         if let Some(weights) = weights {
-            if weights.len() != count {
-                return Err(CurveError::WrongWeightCount {
-                    count: weights.len(),
-                    expected: count,
-                });
-            }
-            for (index, &w) in weights.iter().enumerate() {
-                if !w.is_finite() {
-                    return Err(CurveError::NonFiniteWeight { index });
-                }
-                if w <= 0.0 {
-                    return Err(CurveError::NonPositiveWeight { index });
-                }
-            }
+            check_weights(weights, points.len())?;
         }
-        let full_len = count + degree + 1;
-        let convention = if knots.len() == full_len {
-            KnotConvention::Full
-        } else if knots.len() + 2 == full_len {
-            KnotConvention::Trimmed
-        } else {
-            return Err(CurveError::WrongKnotCount {
-                count: knots.len(),
-                full: full_len,
-                trimmed: full_len - 2,
-            });
-        };
-        check_knot_values(knots, degree, convention)?;
-        let full = match convention {
-            KnotConvention::Full => knots.to_vec(),
-            KnotConvention::Trimmed => {
-                let mut full = Vec::with_capacity(full_len);
-                full.push(knots[0]);
-                full.extend_from_slice(knots);
-                full.push(knots[knots.len() - 1]);
-                full
+        let weights = weights.map(<[f64]>::to_vec);
+        let count = points.len();
+        let (full, convention) = match knots {
+            KnotForm::Flat(knots) => flat_knots(knots, degree, count)?,
+            KnotForm::Multiplicities {
+                knots,
+                multiplicities,
+            } => (
+                expanded_knots(knots, multiplicities, degree, count)?,
+                KnotConvention::Multiplicities,
+            ),
+            KnotForm::Periodic {
+                knots,
+                multiplicities,
+            } => {
+                check_periodic_knots(knots, multiplicities, degree, count)?;
+                return Ok(super::periodic::unwrapped(
+                    degree,
+                    dimension,
+                    points,
+                    weights,
+                    knots,
+                    multiplicities,
+                ));
             }
         };
         if full[degree] >= full[count] {
             return Err(CurveError::EmptyDomain);
         }
         Ok(Curve::from_valid_parts(
-            degree,
-            dimension,
-            points,
-            weights.map(<[f64]>::to_vec),
-            full,
-            convention,
+            degree, dimension, points, weights, full, convention,
         ))
     }
 
@@ -353,14 +439,32 @@ impl Curve {
             homogeneous,
             knots,
             convention,
+            periodic: None,
         }
+    }
+
+    /// This curve's data as an ordinary curve (a periodic one cut open at `k_0`).
+    pub(crate) fn as_ordinary(&self) -> Curve {
+        Curve {
+            periodic: None,
+            ..self.clone()
+        }
+    }
+
+    /// The same curve marked periodic (precondition: the data are a periodic curve cut open
+    /// at its first knot, as [`super::periodic`] builds them).
+    pub(crate) fn into_periodic(mut self, periodicity: Periodicity) -> Curve {
+        self.periodic = Some(periodicity);
+        self
     }
 
     /// The same curve with another full knot vector (same length). Checks only what evaluation
     /// needs: finite, non-decreasing values and a non-empty domain. Unlike [`Curve::new`] it
     /// accepts any multiplicity, e.g. a knot moved onto a clamped end (multiplicity `p + 2`
     /// there, which takes `d_0` or `d_n` out of the curve: the shape solver's `keep_domain`
-    /// rejects such edits).
+    /// rejects such edits). A periodic curve's result is the ordinary curve over the period
+    /// (new knots need not repeat with the period; [`super::PeriodicWindow::wrap`] makes
+    /// periodic edits).
     pub fn with_full_knots(&self, knots: Vec<f64>) -> Option<Curve> {
         let valid = knots.len() == self.knots.len()
             && knots.iter().all(|u| u.is_finite())
@@ -368,12 +472,14 @@ impl Curve {
             && knots[self.degree] < knots[self.control_points.len()];
         valid.then(|| Curve {
             knots,
+            periodic: None,
             ..self.clone()
         })
     }
 
     /// The same curve with other control points (same count and dimension; `z = 0` for a
-    /// planar curve), or `None` when a coordinate is not finite.
+    /// planar curve), or `None` when a coordinate is not finite. A periodic curve's result is
+    /// the ordinary curve over the period, as for [`Curve::with_full_knots`].
     pub fn with_control_points(&self, control_points: Vec<Point>) -> Option<Curve> {
         let valid = control_points.len() == self.control_points.len()
             && control_points.iter().flatten().all(|v| v.is_finite());
@@ -422,6 +528,21 @@ impl Curve {
         self.weights.as_deref()
     }
 
+    /// The control points in the caller's form: all of them, or a periodic curve's `N`
+    /// (the cut-open curve's last ones repeat them).
+    pub fn caller_control_points(&self) -> &[Point] {
+        match self.periodic {
+            Some(periodicity) => &self.control_points[..periodicity.poles],
+            None => &self.control_points,
+        }
+    }
+
+    /// The weights in the caller's form (see [`Curve::caller_control_points`]).
+    pub fn caller_weights(&self) -> Option<&[f64]> {
+        let count = self.caller_control_points().len();
+        self.weights.as_deref().map(|w| &w[..count])
+    }
+
     /// Weight of control point `i` (1 for a non-rational curve).
     pub fn weight(&self, i: usize) -> f64 {
         self.weights.as_ref().map_or(1.0, |w| w[i])
@@ -442,10 +563,12 @@ impl Curve {
         &self.knots
     }
 
-    /// The knot vector in the caller's convention.
+    /// The knot vector in the caller's convention: the flat vector its knot indices refer to
+    /// (the full vector for the multiplicities form; [`Curve::caller_knots`] gives the
+    /// distinct values and multiplicities an answer carries).
     pub fn knots_in_convention(&self) -> &[f64] {
         match self.convention {
-            KnotConvention::Full => &self.knots,
+            KnotConvention::Full | KnotConvention::Multiplicities => &self.knots,
             KnotConvention::Trimmed => &self.knots[1..self.knots.len() - 1],
         }
     }
@@ -453,6 +576,56 @@ impl Curve {
     /// The caller's knot convention.
     pub fn convention(&self) -> KnotConvention {
         self.convention
+    }
+
+    /// Whether the caller gave the curve in the periodic form.
+    pub fn is_periodic(&self) -> bool {
+        self.periodic.is_some()
+    }
+
+    /// The periodic layout, for a periodic curve.
+    pub(crate) fn periodicity(&self) -> Option<Periodicity> {
+        self.periodic
+    }
+
+    /// The knots in the caller's form: the flat vector in its convention, or the distinct
+    /// values with multiplicities (of one period, for a periodic curve).
+    pub fn caller_knots(&self) -> CallerKnots {
+        match self.periodic {
+            Some(periodicity) => super::periodic::period_knots(self, periodicity),
+            None => self.full_knots_in_caller_form(&self.knots),
+        }
+    }
+
+    /// Another full knot vector of this (non-periodic) curve's length, e.g. a solution's, in
+    /// the caller's form. For a periodic curve the vector is taken as the cut-open curve's
+    /// and written flat: periodic edits go through [`super::PeriodicWindow`].
+    pub fn full_knots_in_caller_form(&self, full: &[f64]) -> CallerKnots {
+        match self.convention {
+            KnotConvention::Full => CallerKnots {
+                knots: full.to_vec(),
+                multiplicities: None,
+                periodic: false,
+            },
+            KnotConvention::Trimmed if full.len() >= 2 => CallerKnots {
+                knots: full[1..full.len() - 1].to_vec(),
+                multiplicities: None,
+                periodic: false,
+            },
+            KnotConvention::Trimmed => CallerKnots {
+                knots: full.to_vec(),
+                multiplicities: None,
+                periodic: false,
+            },
+            KnotConvention::Multiplicities => {
+                let (knots, multiplicities) = distinct_knots(full);
+                CallerKnots {
+                    knots,
+                    multiplicities: Some(multiplicities),
+                    periodic: false,
+                }
+            }
+        }
     }
 
     /// The parameter domain `[u_p, u_{n+1}]`.
@@ -477,6 +650,9 @@ impl Curve {
     /// A client that computes a parameter in floating point (Greville abscissae, a sum of
     /// steps) lands a few units of roundoff past an end; every endpoint that takes parameters
     /// clamps such values instead of refusing them.
+    ///
+    /// A periodic curve takes every finite parameter: one outside its period `[lo, hi]` is
+    /// reduced into it, `lo + (t - lo) mod (hi - lo)` (the curve repeats with the period).
     pub fn snap_to_domain(&self, t: f64) -> Option<f64> {
         if !t.is_finite() {
             return None;
@@ -484,6 +660,10 @@ impl Curve {
         let (lo, hi) = self.domain();
         if (lo..=hi).contains(&t) {
             return Some(t);
+        }
+        if self.periodic.is_some() {
+            let reduced = lo + (t - lo).rem_euclid(hi - lo);
+            return reduced.is_finite().then(|| reduced.clamp(lo, hi));
         }
         let roundoff = DOMAIN_END_ULPS * f64::EPSILON * lo.abs().max(hi.abs());
         let slack = (DOMAIN_END_SLACK * (hi - lo)).max(roundoff);
@@ -500,6 +680,230 @@ impl Curve {
     pub fn span(&self, t: f64) -> usize {
         find_span(&self.knots, self.degree, t)
     }
+}
+
+/// The control points as core points, after the rules of [`Curve::from_knot_form`] for the
+/// degree and the control points (`periodic`: `max(degree, 2)` points suffice).
+fn checked_points(
+    degree: usize,
+    control_points: &[impl AsRef<[f64]>],
+    periodic: bool,
+    limits: &CurveLimits,
+) -> Result<(Dimension, Vec<Point>), CurveError> {
+    if degree < 1 {
+        return Err(CurveError::DegreeTooLow);
+    }
+    let max_degree = limits.max_degree.min(MAX_DEGREE);
+    if degree > max_degree {
+        return Err(CurveError::DegreeTooHigh {
+            degree,
+            max: max_degree,
+        });
+    }
+    let count = control_points.len();
+    let needed = if periodic { degree.max(2) } else { degree + 1 };
+    if count < needed {
+        return Err(CurveError::TooFewControlPoints {
+            count,
+            degree,
+            needed,
+        });
+    }
+    if count > limits.max_control_points {
+        return Err(CurveError::TooManyControlPoints {
+            count,
+            max: limits.max_control_points,
+        });
+    }
+    let expected = control_points[0].as_ref().len();
+    let dimension = match expected {
+        2 => Dimension::Two,
+        3 => Dimension::Three,
+        _ => return Err(CurveError::UnsupportedDimension { len: expected }),
+    };
+    let mut points = Vec::with_capacity(count);
+    for (index, raw) in control_points.iter().enumerate() {
+        let raw = raw.as_ref();
+        if raw.len() != expected {
+            return Err(CurveError::WrongDimension {
+                index,
+                len: raw.len(),
+                expected,
+            });
+        }
+        let mut point = [0.0; 3];
+        for (coordinate, &value) in raw.iter().enumerate() {
+            if !value.is_finite() {
+                return Err(CurveError::NonFiniteCoordinate { index, coordinate });
+            }
+            point[coordinate] = value;
+        }
+        points.push(point);
+    }
+    Ok((dimension, points))
+}
+
+/// One finite weight `> 0` per control point.
+fn check_weights(weights: &[f64], count: usize) -> Result<(), CurveError> {
+    if weights.len() != count {
+        return Err(CurveError::WrongWeightCount {
+            count: weights.len(),
+            expected: count,
+        });
+    }
+    for (index, &w) in weights.iter().enumerate() {
+        if !w.is_finite() {
+            return Err(CurveError::NonFiniteWeight { index });
+        }
+        if w <= 0.0 {
+            return Err(CurveError::NonPositiveWeight { index });
+        }
+    }
+    Ok(())
+}
+
+/// The full vector of a flat knot vector (full or trimmed, detected by length) and its
+/// convention, once [`check_knot_values`] holds.
+fn flat_knots(
+    knots: &[f64],
+    degree: usize,
+    count: usize,
+) -> Result<(Vec<f64>, KnotConvention), CurveError> {
+    let full_len = count + degree + 1;
+    let convention = if knots.len() == full_len {
+        KnotConvention::Full
+    } else if knots.len() + 2 == full_len {
+        KnotConvention::Trimmed
+    } else {
+        return Err(CurveError::WrongKnotCount {
+            count: knots.len(),
+            full: full_len,
+            trimmed: full_len - 2,
+        });
+    };
+    check_knot_values(knots, degree, convention)?;
+    let full = match convention {
+        KnotConvention::Trimmed => {
+            let mut full = Vec::with_capacity(full_len);
+            full.push(knots[0]);
+            full.extend_from_slice(knots);
+            full.push(knots[knots.len() - 1]);
+            full
+        }
+        KnotConvention::Full | KnotConvention::Multiplicities => knots.to_vec(),
+    };
+    Ok((full, convention))
+}
+
+/// Checks what the multiplicities form and the periodic form share: one multiplicity per
+/// knot, finite strictly increasing knots, every multiplicity `>= 1` and at most
+/// `interior_max` inside (`ends_max` at the first and last knot). Returns the sum of the
+/// multiplicities (saturating: a huge sum is wrong anyway).
+fn check_distinct_knots(
+    knots: &[f64],
+    multiplicities: &[usize],
+    interior_max: usize,
+    ends_max: usize,
+    ends_rule: &'static str,
+) -> Result<usize, CurveError> {
+    if knots.len() != multiplicities.len() {
+        return Err(CurveError::MultiplicityCountMismatch {
+            knots: knots.len(),
+            multiplicities: multiplicities.len(),
+        });
+    }
+    let last = knots.len().saturating_sub(1);
+    let mut sum: usize = 0;
+    for (index, (&u, &multiplicity)) in knots.iter().zip(multiplicities).enumerate() {
+        if !u.is_finite() {
+            return Err(CurveError::NonFiniteKnot { index });
+        }
+        if index > 0 && u <= knots[index - 1] {
+            return Err(CurveError::KnotNotIncreasing { index });
+        }
+        if multiplicity == 0 {
+            return Err(CurveError::ZeroMultiplicity { index });
+        }
+        let (max, rule) = if index == 0 || index == last {
+            (ends_max, ends_rule)
+        } else {
+            (interior_max, "degree + 1 inside")
+        };
+        if multiplicity > max {
+            return Err(CurveError::MultiplicityTooHigh {
+                index,
+                multiplicity,
+                max,
+                rule,
+            });
+        }
+        sum = sum.saturating_add(multiplicity);
+    }
+    Ok(sum)
+}
+
+/// The full vector of the multiplicities form, once its rules hold (the sum is checked
+/// before anything is expanded, so a huge multiplicity allocates nothing).
+fn expanded_knots(
+    knots: &[f64],
+    multiplicities: &[usize],
+    degree: usize,
+    count: usize,
+) -> Result<Vec<f64>, CurveError> {
+    let sum = check_distinct_knots(
+        knots,
+        multiplicities,
+        degree + 1,
+        degree + 2,
+        "degree + 2 at an end, as in a full vector",
+    )?;
+    let expected = count + degree + 1;
+    if sum != expected {
+        return Err(CurveError::WrongMultiplicitySum {
+            sum,
+            control_points: count,
+            degree,
+            expected,
+        });
+    }
+    let mut full = Vec::with_capacity(expected);
+    for (&u, &multiplicity) in knots.iter().zip(multiplicities) {
+        full.extend(std::iter::repeat_n(u, multiplicity));
+    }
+    Ok(full)
+}
+
+/// Open CASCADE's rules of the periodic form (see [`KnotForm::Periodic`]).
+fn check_periodic_knots(
+    knots: &[f64],
+    multiplicities: &[usize],
+    degree: usize,
+    count: usize,
+) -> Result<(), CurveError> {
+    if knots.len() == multiplicities.len() && knots.len() < 2 {
+        return Err(CurveError::PeriodicTooFewKnots);
+    }
+    let sum = check_distinct_knots(
+        knots,
+        multiplicities,
+        degree + 1,
+        degree,
+        "at most the degree at the ends of a periodic curve",
+    )?;
+    let last_index = multiplicities.len() - 1;
+    let (first, last) = (multiplicities[0], multiplicities[last_index]);
+    if first != last {
+        return Err(CurveError::PeriodicEndsDiffer {
+            first,
+            last,
+            last_index,
+        });
+    }
+    let expected = sum - last;
+    if count != expected {
+        return Err(CurveError::PeriodicControlPointCount { count, expected });
+    }
+    Ok(())
 }
 
 /// Checks finiteness, monotonicity and multiplicity of the caller's knots (caller's indices).

@@ -69,7 +69,9 @@ impl InsertError {
 
 impl Curve {
     /// The same curve with the knot values `values` inserted (a value may repeat to raise its
-    /// multiplicity), in the same knot convention.
+    /// multiplicity), in the same knot convention. A periodic curve takes any finite value
+    /// (reduced into its period; `k_m` is `k_0`) and stays periodic: the value is inserted
+    /// into every period.
     ///
     /// Each value is snapped onto the domain ([`Curve::snap_to_domain`]) and must then lie
     /// in `[lo, hi]`; its multiplicity in the full knot vector after insertion must stay at
@@ -82,7 +84,7 @@ impl Curve {
         max_control_points: usize,
     ) -> Result<Curve, InsertError> {
         let sorted = self.checked_insertions(values)?;
-        let count = self.control_points().len() + sorted.len();
+        let count = self.caller_control_points().len() + sorted.len();
         if count > max_control_points {
             return Err(InsertError::TooManyControlPoints {
                 count,
@@ -107,6 +109,11 @@ impl Curve {
                     value,
                     domain: self.domain(),
                 });
+            };
+            // A periodic curve's `k_m` is its `k_0`, one knot of the periodic form.
+            let t = match self.is_periodic() {
+                true if t == self.domain().1 => self.domain().0,
+                _ => t,
             };
             snapped.push((t, index));
         }
@@ -154,6 +161,9 @@ impl Curve {
         if inserted.is_empty() {
             return self.clone();
         }
+        if let Some(periodicity) = self.periodicity() {
+            return super::periodic::refined(self, periodicity, inserted);
+        }
         let (knots, homogeneous) =
             refine(self.degree(), self.knots(), self.homogeneous(), inserted);
         let (points, weights) = if self.is_rational() {
@@ -174,6 +184,45 @@ impl Curve {
             points,
             weights,
             knots,
+            self.convention(),
+        )
+    }
+
+    /// The same curve over its domain with clamped ends (`degree + 1` equal knots at each
+    /// end, so the first and last control points are the curve's ends), as an ordinary
+    /// curve: a periodic one is cut open at `k_0`. The domain's ends are inserted up to
+    /// multiplicity `p` (Boehm), then the control points and knots outside the domain dropped
+    /// (the outermost knot of each end run has no effect on the curve in the domain, so it
+    /// becomes the end value).
+    pub fn clamped(&self) -> Curve {
+        let ordinary = self.as_ordinary();
+        let p = self.degree();
+        let (lo, hi) = self.domain();
+        let knots = self.knots();
+        let count = |v: f64| knots.iter().filter(|&&u| u == v).count();
+        let mut inserted = vec![lo; p.saturating_sub(count(lo))];
+        inserted.extend(std::iter::repeat_n(hi, p.saturating_sub(count(hi))));
+        let refined = ordinary.refined(&inserted);
+        let knots = refined.knots();
+        let last_lo = knots.iter().rposition(|&u| u == lo).unwrap_or(p);
+        let first_hi = knots
+            .iter()
+            .position(|&u| u == hi)
+            .unwrap_or(knots.len() - p - 1);
+        let start = last_lo + 1 - p - 1;
+        let end = first_hi + p;
+        let mut clamped_knots = knots[start..=end].to_vec();
+        clamped_knots[0] = lo;
+        let last = clamped_knots.len() - 1;
+        clamped_knots[last] = hi;
+        let points = refined.control_points()[start..first_hi].to_vec();
+        let weights = refined.weights().map(|w| w[start..first_hi].to_vec());
+        Curve::from_valid_parts(
+            p,
+            self.dimension(),
+            points,
+            weights,
+            clamped_knots,
             self.convention(),
         )
     }

@@ -14,6 +14,7 @@ mod envelope;
 mod eval;
 mod insert;
 mod other_knots;
+mod periodic;
 mod tessellate;
 pub use other_knots::PowerPiece;
 pub mod vector;
@@ -22,11 +23,12 @@ pub use basis::MAX_DEGREE;
 pub use bezier::{BezierPiece, BezierPieces};
 pub use closest::{CLOSEST_POINT_TOLERANCE, ClosestPoint, ClosestPointError, ClosestPointSearch};
 pub use curve::{
-    Curve, CurveError, CurveField, CurveLimits, DOMAIN_END_SLACK, DOMAIN_END_ULPS, Dimension,
-    KnotConvention,
+    CallerKnots, Curve, CurveError, CurveField, CurveLimits, DOMAIN_END_SLACK, DOMAIN_END_ULPS,
+    Dimension, KnotConvention, KnotForm, distinct_knots,
 };
 pub use envelope::{EnvelopeError, KnotRun};
 pub use eval::{BatchEvaluator, EvalError};
 pub use insert::{EDITING_KNOT_SPACING, EDITING_KNOTS_EACH_SIDE, InsertError};
+pub use periodic::{PeriodicWindow, WrapError};
 pub use tessellate::{ROUNDING_MARGIN, TOLERANCE_FLOOR, TessellationError, distance_to_segment};
 pub use vector::Point;

@@ -77,6 +77,11 @@ fn check_sensible(path: &str, request: &Value, body: &Value) {
             let after = body["curve"]["control_points"].as_array().unwrap().len();
             assert!(after > before, "knots were inserted");
         }
+        "/v1/curves/import" => {
+            let curves = body["curves"].as_array().unwrap();
+            assert!(!curves.is_empty(), "the example files hold B-spline curves");
+            assert!(curves.iter().all(|c| c["source"].is_string()));
+        }
         "/v1/curves/bezier" => {
             assert!(!body["segments"].as_array().unwrap().is_empty());
             assert!(body["svg_path"].as_str().unwrap().starts_with('M'));
@@ -115,6 +120,21 @@ async fn every_example_request_gets_a_sensible_200() {
             .unwrap_or_else(|| panic!("{name}: no route matches the file name"))
             .to_string();
         let request: Value = serde_json::from_str(&std::fs::read_to_string(file).unwrap()).unwrap();
+        if path == "/v1/curves/export" {
+            // The answer is the file; it reads back to as many curves.
+            let response = app.post(&path, &request).await;
+            assert_eq!(response.status().as_u16(), 200, "{name}");
+            let data = response.text().await.unwrap();
+            let import = serde_json::json!({"format": request["format"], "data": data});
+            let (status, back) = app.post_json("/v1/curves/import", &import).await;
+            assert_eq!(status, 200, "{name}: {back}");
+            assert_eq!(
+                back["curves"].as_array().unwrap().len(),
+                request["curves"].as_array().unwrap().len()
+            );
+            endpoints.insert(path);
+            continue;
+        }
         let (status, body) = app.post_json(&path, &request).await;
         assert_eq!(status, 200, "{name}: {body}");
         check_sensible(&path, &request, &body);
@@ -122,7 +142,7 @@ async fn every_example_request_gets_a_sensible_200() {
     }
     assert_eq!(
         endpoints.len(),
-        8,
+        10,
         "one example or more per endpoint: {endpoints:?}"
     );
 }

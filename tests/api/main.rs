@@ -12,6 +12,7 @@ mod errors;
 mod examples;
 mod helpers;
 mod insert_knots;
+mod interop;
 mod limits;
 mod ops;
 mod pictures;

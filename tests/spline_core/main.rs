@@ -8,6 +8,7 @@ mod editing;
 mod envelope;
 mod evaluation;
 mod generators;
+mod periodic;
 mod reference;
 mod toolkit;
 

@@ -175,7 +175,7 @@ proptest! {
         merged.sort_by(f64::total_cmp);
         prop_assert_eq!(refined.knots(), &merged[..]);
         let expected_convention_len = match curve.convention() {
-            KnotConvention::Full => merged.len(),
+            KnotConvention::Full | KnotConvention::Multiplicities => merged.len(),
             KnotConvention::Trimmed => merged.len() - 2,
         };
         prop_assert_eq!(refined.knots_in_convention().len(), expected_convention_len);

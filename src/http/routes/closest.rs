@@ -60,9 +60,10 @@ fn closest_point_request(
     curve_limits: &CurveLimits,
 ) -> Result<ClosestPointResponse, ApiError> {
     let mut errors = Vec::new();
-    let curve = request
-        .curve
-        .parse_collecting(curve_limits, "/curve", &mut errors);
+    let curve =
+        request
+            .curve
+            .parse_collecting_allowing_periodic(curve_limits, "/curve", &mut errors);
     let count = request.points.len();
     if count == 0 {
         errors.push(FieldError::new("/points", "give at least one query point"));

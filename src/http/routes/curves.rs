@@ -74,9 +74,10 @@ fn evaluate_request(
     curve_limits: &CurveLimits,
 ) -> Result<EvaluateResponse, ApiError> {
     let mut errors = Vec::new();
-    let curve = request
-        .curve
-        .parse_collecting(curve_limits, "/curve", &mut errors);
+    let curve =
+        request
+            .curve
+            .parse_collecting_allowing_periodic(curve_limits, "/curve", &mut errors);
     let source = match (&request.parameters, request.samples, request.tolerance) {
         (Some(_), _, Some(_)) | (_, Some(_), Some(_)) => {
             errors.push(FieldError::new(

@@ -3,6 +3,7 @@
 pub mod closest;
 pub mod curves;
 pub mod editor;
+pub mod files;
 pub mod ops;
 pub mod shape;
 pub mod toolkit;

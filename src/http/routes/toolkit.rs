@@ -53,7 +53,13 @@ fn insert_knots_request(
     request: &InsertKnotsRequest,
     limits: &CurveLimits,
 ) -> Result<InsertKnotsResponse, ApiError> {
-    let curve = request.curve.parse(limits, "/curve")?;
+    let curve = request.curve.parse_allowing_periodic(limits, "/curve")?;
+    if curve.is_periodic() && request.editable_at.is_some() {
+        return Err(ApiError::invalid(
+            "/editable_at",
+            "`editable_at` prepares a curve for the editing methods, which do not take periodic curves yet",
+        ));
+    }
     let knots = JsonPointer::from("/knots");
     let mut inserted = curve
         .checked_insertions(&request.knots)
@@ -152,7 +158,7 @@ fn bezier_request(
     request: &BezierRequest,
     limits: &CurveLimits,
 ) -> Result<BezierResponse, ApiError> {
-    let curve = request.curve.parse(limits, "/curve")?;
+    let curve = request.curve.parse_allowing_periodic(limits, "/curve")?;
     let pieces: Vec<BezierPiece> = curve.bezier_pieces().collect();
     let finite = pieces
         .iter()

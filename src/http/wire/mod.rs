@@ -3,6 +3,7 @@
 
 pub mod closest;
 pub mod curves;
+pub mod files;
 pub mod methods;
 pub mod shape_answer;
 pub mod shape_request;

@@ -122,6 +122,10 @@ pub struct SolutionBody {
     /// The whole new knot vector, in the caller's convention (knot solutions).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub knots: Option<Vec<f64>>,
+    /// The multiplicities of `knots`, when the curve was sent with multiplicities (knot
+    /// solutions; knot indices then refer to the full vector).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub multiplicities: Option<Vec<usize>>,
     /// The whole new list of control points, in the caller's order (control-point solutions).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     #[schema(value_type = Option<Vec<Vec<f64>>>)]
@@ -244,6 +248,7 @@ pub fn knot_solution_body(curve: &Curve, solution: &shape::Solution) -> Solution
                 .collect(),
         ),
         knots: Some(knots_in_caller_convention(curve, &solution.knots)),
+        multiplicities: crate::http::curve::knots_in_caller_form(curve, &solution.knots).1,
         control_points: None,
         changed_control_points: None,
         point: point_to_wire(solution.point, curve.dimension()),
@@ -268,6 +273,7 @@ pub fn control_point_solution_body(
         moved_knot: None,
         changed_knots: None,
         knots: None,
+        multiplicities: None,
         control_points: Some(
             solution
                 .control_points
@@ -311,12 +317,10 @@ pub fn caller_knot_index(curve: &Curve, full_index: usize) -> usize {
         })
 }
 
-/// A full knot vector in the caller's convention (trimmed: without the two end values).
+/// A full knot vector in the caller's convention (trimmed: without the two end values;
+/// multiplicities form: the distinct values, see `knots_in_caller_form`).
 pub fn knots_in_caller_convention(curve: &Curve, full: &[f64]) -> Vec<f64> {
-    match curve.convention() {
-        crate::spline::KnotConvention::Full => full.to_vec(),
-        crate::spline::KnotConvention::Trimmed => full[1..full.len() - 1].to_vec(),
-    }
+    crate::http::curve::knots_in_caller_form(curve, full).0
 }
 
 pub fn candidate_body(curve: &Curve, candidate: &Candidate) -> CandidateBody {

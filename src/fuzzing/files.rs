@@ -1,0 +1,60 @@
+//! The check shared by the fuzz targets `step_import` and `dxf_import` (`fuzz/`) and the corpus
+//! replay test (`tests/fuzz_corpus.rs`): any bytes, as text, through a file reader must give
+//! curves or an error, never a panic; the curves read must write and read back to the same
+//! control points, weights and domains.
+
+use crate::interchange::{FileLimits, Imported, dxf, step};
+use crate::spline::Curve;
+
+/// A reader or a writer of one format.
+type Reader = fn(&str, &FileLimits) -> Result<Imported, crate::interchange::FileError>;
+type Writer = fn(&[Curve]) -> String;
+
+/// Reads `input` as a STEP file and checks the round trip of what it holds.
+pub fn check_step(input: &[u8]) -> Result<(), String> {
+    check(input, step::read, step::write)
+}
+
+/// Reads `input` as a DXF file and checks the round trip of what it holds.
+pub fn check_dxf(input: &[u8]) -> Result<(), String> {
+    check(input, dxf::read, dxf::write)
+}
+
+fn check(input: &[u8], read: Reader, write: Writer) -> Result<(), String> {
+    let text = String::from_utf8_lossy(input);
+    let limits = FileLimits {
+        max_entities: 2_000,
+        ..FileLimits::default()
+    };
+    let Ok(imported) = read(&text, &limits) else {
+        return Ok(());
+    };
+    let curves: Vec<Curve> = imported.curves.iter().map(|c| c.curve.clone()).collect();
+    if curves.is_empty() {
+        return Ok(());
+    }
+    let written = write(&curves);
+    let back = read(&written, &FileLimits::default())
+        .map_err(|error| format!("a written file does not read back: {error}\n{written}"))?;
+    if back.curves.len() != curves.len() || back.skipped != 0 {
+        return Err(format!(
+            "{} curves written, {} read back ({} skipped)",
+            curves.len(),
+            back.curves.len(),
+            back.skipped
+        ));
+    }
+    for (index, (original, again)) in curves.iter().zip(&back.curves).enumerate() {
+        let again = &again.curve;
+        let same = original.degree() == again.degree()
+            && original.control_points() == again.control_points()
+            && original.weights() == again.weights()
+            && original.domain() == again.domain();
+        if !same {
+            return Err(format!(
+                "curve {index} changed in the round trip: {original:?} → {again:?}"
+            ));
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,83 @@
+//! Wire types of `POST /v1/curves/import` and `POST /v1/curves/export` (STEP and DXF files).
+
+use serde::{Deserialize, Serialize};
+use utoipa::ToSchema;
+
+use crate::http::curve::CurveBody;
+
+/// A curve file format.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, ToSchema)]
+#[serde(rename_all = "lowercase")]
+#[schema(example = json!("step"))]
+pub enum FileFormat {
+    /// STEP (ISO 10303-21 exchange structure): `B_SPLINE_CURVE_WITH_KNOTS` and its rational
+    /// complex form.
+    Step,
+    /// ASCII DXF: `SPLINE` entities.
+    Dxf,
+}
+
+/// A STEP or DXF file whose B-spline curves are wanted.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+#[schema(example = json!({
+    "format": "dxf",
+    "data": "0\nSECTION\n2\nENTITIES\n0\nSPLINE\n5\n2A\n70\n8\n71\n2\n72\n6\n73\n3\n40\n0\n40\n0\n40\n0\n40\n1\n40\n1\n40\n1\n10\n0\n20\n0\n30\n0\n10\n1\n20\n2\n30\n0\n10\n2\n20\n0\n30\n0\n0\nENDSEC\n0\nEOF\n"
+}))]
+pub struct ImportRequest {
+    /// The file's format.
+    pub format: FileFormat,
+    /// The file's text (at most the configured `max_file_bytes`, 1 MiB by default; ASCII
+    /// DXF). Malformed or truncated text is a 422 as a whole (no partial answer).
+    pub data: String,
+}
+
+/// One B-spline curve of the file: a curve object (STEP: distinct knots with multiplicities
+/// and 2D or 3D points as the file has them; DXF: the full knot vector, 3D points) and where
+/// it came from.
+#[derive(Debug, Clone, Serialize, ToSchema)]
+#[schema(example = json!({
+    "degree": 2, "control_points": [[0, 0, 0], [1, 2, 0], [2, 0, 0]],
+    "knots": [0, 0, 0, 1, 1, 1], "source": "2A"
+}))]
+pub struct ImportedCurveBody {
+    /// The curve.
+    #[serde(flatten)]
+    pub curve: CurveBody,
+    /// The entity: `#N` (STEP instance name) or the DXF handle (`line L` for a DXF entity
+    /// without a handle).
+    pub source: String,
+}
+
+/// Every B-spline curve of the file.
+#[derive(Debug, Clone, Serialize, ToSchema)]
+#[schema(example = json!({
+    "curves": [{"degree": 2, "control_points": [[0, 0, 0], [1, 2, 0], [2, 0, 0]],
+                "knots": [0, 0, 0, 1, 1, 1], "source": "2A"}],
+    "skipped": 0
+}))]
+pub struct ImportResponse {
+    /// The file's B-spline curves in the order of the file: STEP `B_SPLINE_CURVE_WITH_KNOTS`
+    /// (simple or complex, rational), DXF `SPLINE` with control points.
+    pub curves: Vec<ImportedCurveBody>,
+    /// The other curve entities of the file, not read (STEP: `LINE`, `CIRCLE`,
+    /// `TRIMMED_CURVE`, B-spline forms without knots, …; DXF: `LINE`, `ARC`, `CIRCLE`,
+    /// `ELLIPSE`, polylines, …, and splines given by fit points only).
+    pub skipped: usize,
+}
+
+/// Curves to write as a STEP or DXF file.
+#[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+#[schema(example = json!({
+    "format": "step",
+    "curves": [{"degree": 3, "control_points": [[0, 0], [1, 2], [3, 2], [4, 0]],
+                "knots": [0, 1], "multiplicities": [4, 4]}]
+}))]
+pub struct ExportRequest {
+    /// The file's format.
+    pub format: FileFormat,
+    /// One to `max_file_entities` curves (any knot form; periodic curves are written as the
+    /// ordinary curve over their period, which neither format's periodic notions match).
+    pub curves: Vec<CurveBody>,
+}

@@ -1,0 +1,1076 @@
+//! STEP (ISO 10303-21, "Part 21") B-spline curves: `B_SPLINE_CURVE_WITH_KNOTS` and its
+//! rational complex form `( BOUNDED_CURVE() B_SPLINE_CURVE(..) B_SPLINE_CURVE_WITH_KNOTS(..)
+//! CURVE() GEOMETRIC_REPRESENTATION_ITEM() RATIONAL_B_SPLINE_CURVE(..)
+//! REPRESENTATION_ITEM(..) )`, read from any exchange file and written inside a wireframe
+//! shape representation that Open CASCADE's `STEPControl_Reader` transfers.
+//!
+//! Hand-written, on purpose: the Rust STEP crates read whole application protocols (large
+//! generated schemas) or do not bound their work on hostile input; these few entities need a
+//! tokenizer, a parser of Part 21's instance syntax with limits, and a writer, about 600 lines
+//! that can be fuzzed whole (fuzz/fuzz_targets/step_import.rs).
+//!
+//! Reading: the syntax of the whole file is checked (header, data sections, every instance),
+//! only `CARTESIAN_POINT`s and the B-spline curves are kept, and every curve's control points
+//! are resolved to its points. Other curve entities (`LINE`, `CIRCLE`, `TRIMMED_CURVE`, other
+//! B-spline forms, …) are counted as skipped. Equal consecutive knots are merged (summing
+//! their multiplicities), which some writers emit and the curve is the same with.
+
+use std::collections::HashMap;
+
+use super::numbers::real;
+use super::{
+    FileError, FileLimits, Imported, ImportedCurve, MAX_NESTING, check_size, exportable_curve,
+    exportable_knots, malformed,
+};
+use crate::spline::{Curve, KnotForm, distinct_knots};
+
+/// The curve entity types that are counted as skipped (ISO 10303-42 curves other than the
+/// B-spline curves with knots that are read).
+const OTHER_CURVES: &[&str] = &[
+    "BEZIER_CURVE",
+    "BOUNDARY_CURVE",
+    "B_SPLINE_CURVE",
+    "CIRCLE",
+    "CLOTHOID",
+    "COMPOSITE_CURVE",
+    "COMPOSITE_CURVE_ON_SURFACE",
+    "CONIC",
+    "CURVE_REPLICA",
+    "DEGENERATE_PCURVE",
+    "ELLIPSE",
+    "EVALUATED_DEGENERATE_PCURVE",
+    "HYPERBOLA",
+    "INTERSECTION_CURVE",
+    "LINE",
+    "OFFSET_CURVE_2D",
+    "OFFSET_CURVE_3D",
+    "OUTER_BOUNDARY_CURVE",
+    "PARABOLA",
+    "PCURVE",
+    "POLYLINE",
+    "QUASI_UNIFORM_CURVE",
+    "RATIONAL_B_SPLINE_CURVE",
+    "SEAM_CURVE",
+    "SURFACE_CURVE",
+    "TRIMMED_CURVE",
+    "UNIFORM_CURVE",
+];
+
+/// A token of the exchange structure.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Token<'a> {
+    /// `ISO-10303-21`.
+    Magic,
+    /// `END-ISO-10303-21`.
+    EndMagic,
+    Keyword(&'a str),
+    /// `#N`.
+    Ref(u64),
+    /// A number without a point or exponent.
+    Integer(i64),
+    Real(f64),
+    /// A string's raw text (quotes doubled inside); only skipped.
+    Str,
+    /// `.NAME.`
+    Enumeration(&'a str),
+    /// `"…"` hex binary; only skipped.
+    Binary,
+    /// `$`
+    Missing,
+    /// `*`
+    Derived,
+    Open,
+    Close,
+    Comma,
+    Equals,
+    Semicolon,
+}
+
+/// The tokenizer: whitespace and `/* … */` comments between tokens.
+struct Lexer<'a> {
+    text: &'a str,
+    position: usize,
+    line: usize,
+}
+
+impl<'a> Lexer<'a> {
+    fn new(text: &'a str) -> Self {
+        Lexer {
+            text,
+            position: 0,
+            line: 1,
+        }
+    }
+
+    fn bytes(&self) -> &'a [u8] {
+        self.text.as_bytes()
+    }
+
+    /// Skips whitespace and comments.
+    fn skip_blank(&mut self) -> Result<(), FileError> {
+        let bytes = self.bytes();
+        loop {
+            match bytes.get(self.position) {
+                Some(b'\n') => {
+                    self.line += 1;
+                    self.position += 1;
+                }
+                Some(b) if b.is_ascii_whitespace() => self.position += 1,
+                Some(b'/') if bytes.get(self.position + 1) == Some(&b'*') => {
+                    let start_line = self.line;
+                    let rest = &self.text[self.position + 2..];
+                    let Some(end) = rest.find("*/") else {
+                        return Err(malformed(start_line, "a comment is not closed"));
+                    };
+                    self.line += rest[..end].bytes().filter(|&b| b == b'\n').count();
+                    self.position += end + 4;
+                }
+                _ => return Ok(()),
+            }
+        }
+    }
+
+    /// The next token, `None` at the end of the text.
+    fn next(&mut self) -> Result<Option<Token<'a>>, FileError> {
+        self.skip_blank()?;
+        let bytes = self.bytes();
+        let start = self.position;
+        let Some(&first) = bytes.get(start) else {
+            return Ok(None);
+        };
+        let single = |token| Ok(Some(token));
+        match first {
+            b'(' => {
+                self.position += 1;
+                single(Token::Open)
+            }
+            b')' => {
+                self.position += 1;
+                single(Token::Close)
+            }
+            b',' => {
+                self.position += 1;
+                single(Token::Comma)
+            }
+            b'=' => {
+                self.position += 1;
+                single(Token::Equals)
+            }
+            b';' => {
+                self.position += 1;
+                single(Token::Semicolon)
+            }
+            b'$' => {
+                self.position += 1;
+                single(Token::Missing)
+            }
+            b'*' => {
+                self.position += 1;
+                single(Token::Derived)
+            }
+            b'\'' => self.string(),
+            b'"' => {
+                let rest = &self.text[start + 1..];
+                let Some(end) = rest.find('"') else {
+                    return Err(malformed(self.line, "a binary value is not closed"));
+                };
+                self.position = start + end + 2;
+                single(Token::Binary)
+            }
+            b'#' => {
+                let digits = self.take_while(start + 1, |b| b.is_ascii_digit());
+                let id = self.text[start + 1..digits]
+                    .parse::<u64>()
+                    .map_err(|_| malformed(self.line, "an entity name must be # and digits"))?;
+                self.position = digits;
+                single(Token::Ref(id))
+            }
+            b'.' if bytes
+                .get(start + 1)
+                .is_some_and(|b| b.is_ascii_alphabetic() || *b == b'_') =>
+            {
+                let end = self.take_while(start + 1, |b| b.is_ascii_alphanumeric() || b == b'_');
+                if bytes.get(end) != Some(&b'.') {
+                    return Err(malformed(self.line, "an enumeration must end with ."));
+                }
+                self.position = end + 1;
+                single(Token::Enumeration(&self.text[start + 1..end]))
+            }
+            b'+' | b'-' | b'.' | b'0'..=b'9' => self.number(),
+            b if b.is_ascii_alphabetic() || b == b'!' || b == b'_' => {
+                for (magic, token) in [
+                    ("ISO-10303-21", Token::Magic),
+                    ("END-ISO-10303-21", Token::EndMagic),
+                ] {
+                    if self.text[start..].starts_with(magic) {
+                        self.position = start + magic.len();
+                        return single(token);
+                    }
+                }
+                let end = self.take_while(start + 1, |b| b.is_ascii_alphanumeric() || b == b'_');
+                self.position = end;
+                single(Token::Keyword(&self.text[start..end]))
+            }
+            _ => Err(malformed(
+                self.line,
+                format!(
+                    "unexpected character {:?}",
+                    self.text[start..].chars().next().unwrap_or('?')
+                ),
+            )),
+        }
+    }
+
+    /// The end of the run of bytes from `from` that satisfy `accept`.
+    fn take_while(&self, from: usize, accept: impl Fn(u8) -> bool) -> usize {
+        from + self.bytes()[from..]
+            .iter()
+            .take_while(|&&b| accept(b))
+            .count()
+    }
+
+    /// A string `'…'` (a quote inside is doubled).
+    fn string(&mut self) -> Result<Option<Token<'a>>, FileError> {
+        let bytes = self.bytes();
+        let start_line = self.line;
+        let mut i = self.position + 1;
+        loop {
+            match bytes.get(i) {
+                None => return Err(malformed(start_line, "a string is not closed")),
+                Some(b'\'') if bytes.get(i + 1) == Some(&b'\'') => i += 2,
+                Some(b'\'') => break,
+                Some(b'\n') => {
+                    self.line += 1;
+                    i += 1;
+                }
+                Some(_) => i += 1,
+            }
+        }
+        self.position = i + 1;
+        Ok(Some(Token::Str))
+    }
+
+    /// An integer or a real: `[sign] digits [. digits] [E [sign] digits]`.
+    fn number(&mut self) -> Result<Option<Token<'a>>, FileError> {
+        let bytes = self.bytes();
+        let start = self.position;
+        let mut i = start;
+        if matches!(bytes.get(i), Some(b'+' | b'-')) {
+            i += 1;
+        }
+        let digits_start = i;
+        i = self.take_while(i, |b| b.is_ascii_digit());
+        let mut is_real = false;
+        if bytes.get(i) == Some(&b'.') {
+            is_real = true;
+            i = self.take_while(i + 1, |b| b.is_ascii_digit());
+        }
+        if i == digits_start || bytes[digits_start] == b'.' {
+            return Err(malformed(self.line, "a number must start with a digit"));
+        }
+        if matches!(bytes.get(i), Some(b'E' | b'e')) {
+            is_real = true;
+            i += 1;
+            if matches!(bytes.get(i), Some(b'+' | b'-')) {
+                i += 1;
+            }
+            let exponent_start = i;
+            i = self.take_while(i, |b| b.is_ascii_digit());
+            if i == exponent_start {
+                return Err(malformed(self.line, "a number's exponent has no digits"));
+            }
+        }
+        self.position = i;
+        let text = &self.text[start..i];
+        if is_real {
+            let value: f64 = text
+                .parse()
+                .map_err(|_| malformed(self.line, format!("{text} is not a number")))?;
+            if !value.is_finite() {
+                return Err(malformed(
+                    self.line,
+                    format!("{text} is beyond the range of doubles"),
+                ));
+            }
+            Ok(Some(Token::Real(value)))
+        } else {
+            let value: i64 = text
+                .parse()
+                .map_err(|_| malformed(self.line, format!("the integer {text} is too large")))?;
+            Ok(Some(Token::Integer(value)))
+        }
+    }
+}
+
+/// A parameter value.
+#[derive(Debug, Clone, PartialEq)]
+enum Value<'a> {
+    /// `$`, `*`, a string, a binary: present, never read.
+    Other,
+    Integer(i64),
+    Real(f64),
+    Enumeration(&'a str),
+    Ref(u64),
+    /// `KEYWORD(value)`.
+    Typed(&'a str, Box<Value<'a>>),
+    List(Vec<Value<'a>>),
+}
+
+/// One record of an instance: `KEYWORD(parameters)`.
+#[derive(Debug, Clone, PartialEq)]
+struct Record<'a> {
+    keyword: &'a str,
+    parameters: Vec<Value<'a>>,
+}
+
+/// The parser over the token stream, with one token of look-ahead.
+struct Parser<'a> {
+    lexer: Lexer<'a>,
+    peeked: Option<Option<Token<'a>>>,
+}
+
+impl<'a> Parser<'a> {
+    fn line(&self) -> usize {
+        self.lexer.line
+    }
+
+    fn peek(&mut self) -> Result<Option<Token<'a>>, FileError> {
+        if self.peeked.is_none() {
+            self.peeked = Some(self.lexer.next()?);
+        }
+        Ok(self.peeked.flatten())
+    }
+
+    fn next(&mut self) -> Result<Option<Token<'a>>, FileError> {
+        match self.peeked.take() {
+            Some(token) => Ok(token),
+            None => self.lexer.next(),
+        }
+    }
+
+    /// The next token, which the file must have.
+    fn required(&mut self, what: &str) -> Result<Token<'a>, FileError> {
+        self.next()?.ok_or_else(|| {
+            malformed(
+                self.line(),
+                format!("the file ends where {what} was expected (truncated?)"),
+            )
+        })
+    }
+
+    fn expect(&mut self, token: Token<'a>, what: &str) -> Result<(), FileError> {
+        let found = self.required(what)?;
+        if found != token {
+            return Err(malformed(
+                self.line(),
+                format!("expected {what}, found {}", describe(found)),
+            ));
+        }
+        Ok(())
+    }
+
+    fn expect_keyword(&mut self, keyword: &str) -> Result<(), FileError> {
+        match self.required(keyword)? {
+            Token::Keyword(k) if k.eq_ignore_ascii_case(keyword) => Ok(()),
+            other => Err(malformed(
+                self.line(),
+                format!("expected {keyword}, found {}", describe(other)),
+            )),
+        }
+    }
+
+    /// `( value, … )` after the opening parenthesis was read.
+    fn list(&mut self, depth: usize) -> Result<Vec<Value<'a>>, FileError> {
+        if depth > MAX_NESTING {
+            return Err(FileError::TooDeep { line: self.line() });
+        }
+        let mut values = Vec::new();
+        if self.peek()? == Some(Token::Close) {
+            self.next()?;
+            return Ok(values);
+        }
+        loop {
+            values.push(self.value(depth)?);
+            match self.required(") or ,")? {
+                Token::Comma => {}
+                Token::Close => return Ok(values),
+                other => {
+                    return Err(malformed(
+                        self.line(),
+                        format!("expected , or ), found {}", describe(other)),
+                    ));
+                }
+            }
+        }
+    }
+
+    fn value(&mut self, depth: usize) -> Result<Value<'a>, FileError> {
+        Ok(match self.required("a parameter")? {
+            Token::Missing | Token::Derived | Token::Str | Token::Binary => Value::Other,
+            Token::Integer(value) => Value::Integer(value),
+            Token::Real(value) => Value::Real(value),
+            Token::Enumeration(name) => Value::Enumeration(name),
+            Token::Ref(id) => Value::Ref(id),
+            Token::Open => Value::List(self.list(depth + 1)?),
+            Token::Keyword(keyword) => {
+                self.expect(Token::Open, "( after a type name")?;
+                if depth + 1 > MAX_NESTING {
+                    return Err(FileError::TooDeep { line: self.line() });
+                }
+                let inner = self.value(depth + 1)?;
+                self.expect(Token::Close, ") after a typed value")?;
+                Value::Typed(keyword, Box::new(inner))
+            }
+            other => {
+                return Err(malformed(
+                    self.line(),
+                    format!("expected a parameter, found {}", describe(other)),
+                ));
+            }
+        })
+    }
+
+    /// `KEYWORD ( parameters )` whose keyword was read.
+    fn record(&mut self, keyword: &'a str) -> Result<Record<'a>, FileError> {
+        self.expect(Token::Open, "( after an entity name")?;
+        let parameters = self.list(1)?;
+        Ok(Record {
+            keyword,
+            parameters,
+        })
+    }
+}
+
+/// A token as an error message names it.
+fn describe(token: Token<'_>) -> String {
+    match token {
+        Token::Magic => "ISO-10303-21".into(),
+        Token::EndMagic => "END-ISO-10303-21".into(),
+        Token::Keyword(k) => k.into(),
+        Token::Ref(id) => format!("#{id}"),
+        Token::Integer(v) => v.to_string(),
+        Token::Real(v) => v.to_string(),
+        Token::Str => "a string".into(),
+        Token::Enumeration(e) => format!(".{e}."),
+        Token::Binary => "a binary value".into(),
+        Token::Missing => "$".into(),
+        Token::Derived => "*".into(),
+        Token::Open => "(".into(),
+        Token::Close => ")".into(),
+        Token::Comma => ",".into(),
+        Token::Equals => "=".into(),
+        Token::Semicolon => ";".into(),
+    }
+}
+
+/// A B-spline curve entity as read, before its points are resolved.
+struct CurveEntity<'a> {
+    id: u64,
+    line: usize,
+    degree: Value<'a>,
+    points: Value<'a>,
+    multiplicities: Value<'a>,
+    knots: Value<'a>,
+    weights: Option<Value<'a>>,
+}
+
+/// What the data section keeps while it is read.
+#[derive(Default)]
+struct Found<'a> {
+    points: HashMap<u64, Vec<f64>>,
+    /// Every instance name, with whether it is a point (for the error of a wrong reference).
+    names: HashMap<u64, bool>,
+    curves: Vec<CurveEntity<'a>>,
+    skipped: usize,
+}
+
+/// Reads every B-spline curve of a STEP exchange file.
+pub fn read(text: &str, limits: &FileLimits) -> Result<Imported, FileError> {
+    check_size(text, limits)?;
+    let mut parser = Parser {
+        lexer: Lexer::new(text),
+        peeked: None,
+    };
+    parser.expect(Token::Magic, "ISO-10303-21 at the start of the file")?;
+    parser.expect(Token::Semicolon, "; after ISO-10303-21")?;
+    parser.expect_keyword("HEADER")?;
+    parser.expect(Token::Semicolon, "; after HEADER")?;
+    let mut entities = 0usize;
+    loop {
+        match parser.required("a header entity or ENDSEC")? {
+            Token::Keyword(k) if k.eq_ignore_ascii_case("ENDSEC") => break,
+            Token::Keyword(keyword) => {
+                count_entity(&mut entities, limits)?;
+                parser.record(keyword)?;
+                parser.expect(Token::Semicolon, "; after a header entity")?;
+            }
+            other => {
+                return Err(malformed(
+                    parser.line(),
+                    format!("expected a header entity, found {}", describe(other)),
+                ));
+            }
+        }
+    }
+    parser.expect(Token::Semicolon, "; after ENDSEC")?;
+    let mut found = Found::default();
+    let mut sections = 0;
+    loop {
+        match parser.required("DATA or END-ISO-10303-21")? {
+            Token::EndMagic => break,
+            Token::Keyword(k) if k.eq_ignore_ascii_case("DATA") => {
+                sections += 1;
+                if parser.peek()? == Some(Token::Open) {
+                    parser.next()?;
+                    parser.list(1)?;
+                }
+                parser.expect(Token::Semicolon, "; after DATA")?;
+                data_section(&mut parser, &mut found, &mut entities, limits)?;
+            }
+            Token::Keyword(k)
+                if k.eq_ignore_ascii_case("ANCHOR")
+                    || k.eq_ignore_ascii_case("REFERENCE")
+                    || k.eq_ignore_ascii_case("SIGNATURE") =>
+            {
+                return Err(malformed(
+                    parser.line(),
+                    format!("{k} sections are not supported"),
+                ));
+            }
+            other => {
+                return Err(malformed(
+                    parser.line(),
+                    format!("expected DATA, found {}", describe(other)),
+                ));
+            }
+        }
+    }
+    if sections == 0 {
+        return Err(malformed(parser.line(), "the file has no DATA section"));
+    }
+    parser.expect(Token::Semicolon, "; after END-ISO-10303-21")?;
+    if let Some(token) = parser.next()? {
+        return Err(malformed(
+            parser.line(),
+            format!("{} after the end of the file", describe(token)),
+        ));
+    }
+    let curves = found
+        .curves
+        .iter()
+        .map(|entity| build_curve(entity, &found, limits))
+        .collect::<Result<_, _>>()?;
+    Ok(Imported {
+        curves,
+        skipped: found.skipped,
+    })
+}
+
+fn count_entity(entities: &mut usize, limits: &FileLimits) -> Result<(), FileError> {
+    *entities += 1;
+    if *entities > limits.max_entities {
+        return Err(FileError::TooManyEntities {
+            max: limits.max_entities,
+        });
+    }
+    Ok(())
+}
+
+/// The instances of one data section, up to its `ENDSEC;`.
+fn data_section<'a>(
+    parser: &mut Parser<'a>,
+    found: &mut Found<'a>,
+    entities: &mut usize,
+    limits: &FileLimits,
+) -> Result<(), FileError> {
+    loop {
+        let id = match parser.required("an instance or ENDSEC")? {
+            Token::Keyword(k) if k.eq_ignore_ascii_case("ENDSEC") => {
+                return parser.expect(Token::Semicolon, "; after ENDSEC");
+            }
+            Token::Ref(id) => id,
+            other => {
+                return Err(malformed(
+                    parser.line(),
+                    format!("expected an instance #N = …, found {}", describe(other)),
+                ));
+            }
+        };
+        count_entity(entities, limits)?;
+        let line = parser.line();
+        parser.expect(Token::Equals, "= after an instance name")?;
+        let records = match parser.required("an entity")? {
+            Token::Keyword(keyword) => vec![parser.record(keyword)?],
+            Token::Open => {
+                let mut records = Vec::new();
+                loop {
+                    match parser.required("a record or )")? {
+                        Token::Close if !records.is_empty() => break,
+                        Token::Keyword(keyword) => records.push(parser.record(keyword)?),
+                        other => {
+                            return Err(malformed(
+                                parser.line(),
+                                format!(
+                                    "expected a record of a complex entity, found {}",
+                                    describe(other)
+                                ),
+                            ));
+                        }
+                    }
+                }
+                records
+            }
+            other => {
+                return Err(malformed(
+                    parser.line(),
+                    format!("expected an entity, found {}", describe(other)),
+                ));
+            }
+        };
+        parser.expect(Token::Semicolon, "; after an instance")?;
+        let is_point =
+            records.len() == 1 && records[0].keyword.eq_ignore_ascii_case("CARTESIAN_POINT");
+        if found.names.insert(id, is_point).is_some() {
+            return Err(malformed(line, format!("#{id} is defined twice")));
+        }
+        keep(id, line, records, found)?;
+    }
+}
+
+/// Keeps what an instance holds for the curves: a point's coordinates, a B-spline curve's
+/// parameters; counts the other curves.
+fn keep<'a>(
+    id: u64,
+    line: usize,
+    records: Vec<Record<'a>>,
+    found: &mut Found<'a>,
+) -> Result<(), FileError> {
+    let has = |name: &str| {
+        records
+            .iter()
+            .position(|r| r.keyword.eq_ignore_ascii_case(name))
+    };
+    if let [record] = &records[..] {
+        if record.keyword.eq_ignore_ascii_case("CARTESIAN_POINT") {
+            let coordinates = match &record.parameters[..] {
+                [_, Value::List(values)] => values.iter().map(number).collect::<Option<Vec<f64>>>(),
+                _ => None,
+            };
+            let Some(coordinates) = coordinates else {
+                return Err(malformed(
+                    line,
+                    format!("#{id}: a CARTESIAN_POINT is (name, (coordinates))"),
+                ));
+            };
+            found.points.insert(id, coordinates);
+            return Ok(());
+        }
+    }
+    if let Some(with_knots) = has("B_SPLINE_CURVE_WITH_KNOTS") {
+        let entity = if records.len() == 1 {
+            match <[Value; 9]>::try_from(
+                records
+                    .into_iter()
+                    .next()
+                    .map(|r| r.parameters)
+                    .unwrap_or_default(),
+            ) {
+                Ok([_, degree, points, _, _, _, multiplicities, knots, _]) => CurveEntity {
+                    id,
+                    line,
+                    degree,
+                    points,
+                    multiplicities,
+                    knots,
+                    weights: None,
+                },
+                Err(_) => {
+                    return Err(malformed(
+                        line,
+                        format!("#{id}: B_SPLINE_CURVE_WITH_KNOTS has 9 parameters"),
+                    ));
+                }
+            }
+        } else {
+            let Some(base) = has("B_SPLINE_CURVE") else {
+                return Err(malformed(
+                    line,
+                    format!(
+                        "#{id}: a complex B_SPLINE_CURVE_WITH_KNOTS needs its B_SPLINE_CURVE record"
+                    ),
+                ));
+            };
+            let rational = has("RATIONAL_B_SPLINE_CURVE");
+            let mut records: Vec<Option<Record>> = records.into_iter().map(Some).collect();
+            let mut take = |index: usize, count: usize, name: &str| {
+                let parameters = records[index]
+                    .take()
+                    .map(|r| r.parameters)
+                    .unwrap_or_default();
+                if parameters.len() == count {
+                    Ok(parameters)
+                } else {
+                    Err(malformed(
+                        line,
+                        format!("#{id}: {name} has {count} parameters here"),
+                    ))
+                }
+            };
+            let [degree, points, _, _, _] =
+                <[Value; 5]>::try_from(take(base, 5, "B_SPLINE_CURVE")?)
+                    .map_err(|_| malformed(line, "B_SPLINE_CURVE"))?;
+            let [multiplicities, knots, _] =
+                <[Value; 3]>::try_from(take(with_knots, 3, "B_SPLINE_CURVE_WITH_KNOTS")?)
+                    .map_err(|_| malformed(line, "B_SPLINE_CURVE_WITH_KNOTS"))?;
+            let weights = match rational {
+                Some(index) => take(index, 1, "RATIONAL_B_SPLINE_CURVE")?.pop(),
+                None => None,
+            };
+            CurveEntity {
+                id,
+                line,
+                degree,
+                points,
+                multiplicities,
+                knots,
+                weights,
+            }
+        };
+        found.curves.push(entity);
+        return Ok(());
+    }
+    if records.iter().any(|r| {
+        OTHER_CURVES
+            .iter()
+            .any(|c| r.keyword.eq_ignore_ascii_case(c))
+    }) {
+        found.skipped += 1;
+    }
+    Ok(())
+}
+
+/// A number parameter (integers are numbers too).
+fn number(value: &Value<'_>) -> Option<f64> {
+    match *value {
+        Value::Real(v) => Some(v),
+        Value::Integer(v) => Some(v as f64),
+        _ => None,
+    }
+}
+
+/// The curve of a B-spline entity, its points resolved.
+fn build_curve<'v, 'a>(
+    entity: &'v CurveEntity<'a>,
+    found: &Found<'_>,
+    limits: &FileLimits,
+) -> Result<ImportedCurve, FileError> {
+    let (id, line) = (entity.id, entity.line);
+    let bad = |what: &str| malformed(line, format!("#{id}: {what}"));
+    let degree = match entity.degree {
+        Value::Integer(d) if d >= 0 => d as usize,
+        _ => return Err(bad("the degree must be an integer >= 0")),
+    };
+    let Value::List(references) = &entity.points else {
+        return Err(bad("the control points must be a list of references"));
+    };
+    let mut points: Vec<&[f64]> = Vec::with_capacity(references.len());
+    for reference in references {
+        let Value::Ref(point) = reference else {
+            return Err(bad("the control points must be a list of references"));
+        };
+        match (found.points.get(point), found.names.get(point)) {
+            (Some(coordinates), _) => points.push(coordinates),
+            (None, Some(_)) => return Err(bad(&format!("#{point} is not a CARTESIAN_POINT"))),
+            (None, None) => return Err(bad(&format!("#{point} is not defined in the file"))),
+        }
+    }
+    let list_of = |value: &'v Value<'a>, what: &str| match value {
+        Value::List(values) => Ok(values.as_slice()),
+        _ => Err(bad(&format!("the {what} must be a list"))),
+    };
+    let mut multiplicities = Vec::new();
+    for value in list_of(&entity.multiplicities, "knot multiplicities")? {
+        match value {
+            Value::Integer(m) if *m >= 0 => multiplicities.push(*m as usize),
+            _ => return Err(bad("the knot multiplicities must be integers >= 0")),
+        }
+    }
+    let knots = list_of(&entity.knots, "knots")?
+        .iter()
+        .map(number)
+        .collect::<Option<Vec<f64>>>()
+        .ok_or_else(|| bad("the knots must be numbers"))?;
+    let weights = match &entity.weights {
+        None => None,
+        Some(value) => Some(
+            list_of(value, "weights")?
+                .iter()
+                .map(number)
+                .collect::<Option<Vec<f64>>>()
+                .ok_or_else(|| bad("the weights must be numbers"))?,
+        ),
+    };
+    let (knots, multiplicities) = merged(&knots, &multiplicities);
+    let source = format!("#{id}");
+    let curve = Curve::from_knot_form(
+        degree,
+        &points,
+        KnotForm::Multiplicities {
+            knots: &knots,
+            multiplicities: &multiplicities,
+        },
+        weights.as_deref(),
+        &limits.curve_limits,
+    )
+    .map_err(|error| FileError::InvalidCurve {
+        entity: source.clone(),
+        error,
+    })?;
+    Ok(ImportedCurve { curve, source })
+}
+
+/// Equal consecutive knots merged into one, their multiplicities summed (a length mismatch is
+/// left for the curve's validation to name).
+fn merged(knots: &[f64], multiplicities: &[usize]) -> (Vec<f64>, Vec<usize>) {
+    if knots.len() != multiplicities.len() {
+        return (knots.to_vec(), multiplicities.to_vec());
+    }
+    let mut out_knots: Vec<f64> = Vec::with_capacity(knots.len());
+    let mut out_multiplicities: Vec<usize> = Vec::with_capacity(knots.len());
+    for (&u, &m) in knots.iter().zip(multiplicities) {
+        match (out_knots.last(), out_multiplicities.last_mut()) {
+            (Some(&last), Some(count)) if last == u => *count = count.saturating_add(m),
+            _ => {
+                out_knots.push(u);
+                out_multiplicities.push(m);
+            }
+        }
+    }
+    (out_knots, out_multiplicities)
+}
+
+/// A STEP exchange file (AP214, `AUTOMOTIVE_DESIGN`) holding `curves` in one
+/// `GEOMETRIC_CURVE_SET` of a `GEOMETRICALLY_BOUNDED_WIREFRAME_SHAPE_REPRESENTATION` of one
+/// product, as Open CASCADE writes wires: `STEPControl_Reader` transfers each curve to an
+/// edge. Numbers in full precision (the shortest digits that read back exactly); 2D curves
+/// with `z = 0`; a periodic curve as the clamped curve over its period (STEP has no periodic
+/// form); knots as distinct values with multiplicities. Lengths in millimetres.
+pub fn write(curves: &[Curve]) -> String {
+    let mut out = String::new();
+    out.push_str("ISO-10303-21;\nHEADER;\n");
+    out.push_str("FILE_DESCRIPTION(('knotshape B-spline curves'),'2;1');\n");
+    out.push_str("FILE_NAME('curves.step','',(''),(''),'knotshape','knotshape','');\n");
+    out.push_str("FILE_SCHEMA(('AUTOMOTIVE_DESIGN { 1 0 10303 214 1 1 1 1 }'));\nENDSEC;\nDATA;\n");
+    let preamble = [
+        "#1=APPLICATION_PROTOCOL_DEFINITION('international standard','automotive_design',2000,#2);",
+        "#2=APPLICATION_CONTEXT('core data for automotive mechanical design processes');",
+        "#3=SHAPE_DEFINITION_REPRESENTATION(#4,#10);",
+        "#4=PRODUCT_DEFINITION_SHAPE('','',#5);",
+        "#5=PRODUCT_DEFINITION('design','',#6,#9);",
+        "#6=PRODUCT_DEFINITION_FORMATION('','',#7);",
+        "#7=PRODUCT('curves','curves','',(#8));",
+        "#8=PRODUCT_CONTEXT('',#2,'mechanical');",
+        "#9=PRODUCT_DEFINITION_CONTEXT('part definition',#2,'design');",
+        "#10=GEOMETRICALLY_BOUNDED_WIREFRAME_SHAPE_REPRESENTATION('curves',(#11,#15),#20);",
+        "#11=AXIS2_PLACEMENT_3D('',#12,#13,#14);",
+        "#12=CARTESIAN_POINT('',(0.,0.,0.));",
+        "#13=DIRECTION('',(0.,0.,1.));",
+        "#14=DIRECTION('',(1.,0.,0.));",
+        "#16=PRODUCT_RELATED_PRODUCT_CATEGORY('part',$,(#7));",
+        "#20=(GEOMETRIC_REPRESENTATION_CONTEXT(3) GLOBAL_UNCERTAINTY_ASSIGNED_CONTEXT((#24)) GLOBAL_UNIT_ASSIGNED_CONTEXT((#21,#22,#23)) REPRESENTATION_CONTEXT('Context #1','3D Context with UNIT and UNCERTAINTY'));",
+        "#21=(LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT(.MILLI.,.METRE.));",
+        "#22=(NAMED_UNIT(*) PLANE_ANGLE_UNIT() SI_UNIT($,.RADIAN.));",
+        "#23=(NAMED_UNIT(*) SI_UNIT($,.STERADIAN.) SOLID_ANGLE_UNIT());",
+        "#24=UNCERTAINTY_MEASURE_WITH_UNIT(LENGTH_MEASURE(1.E-7),#21,'distance_accuracy_value','confusion accuracy');",
+    ];
+    for line in preamble {
+        out.push_str(line);
+        out.push('\n');
+    }
+    let mut next_id = 100u64;
+    let mut curve_ids = Vec::with_capacity(curves.len());
+    for curve in curves.iter().map(exportable_curve) {
+        let curve = &curve;
+        let first_point = next_id;
+        for (offset, point) in curve.control_points().iter().enumerate() {
+            out.push_str(&format!(
+                "#{}=CARTESIAN_POINT('',({},{},{}));\n",
+                first_point + offset as u64,
+                real(point[0]),
+                real(point[1]),
+                real(point[2])
+            ));
+        }
+        let point_ids: Vec<u64> =
+            (first_point..first_point + curve.control_points().len() as u64).collect();
+        let id = first_point + point_ids.len() as u64;
+        next_id = id + 1;
+        curve_ids.push(id);
+        let (knots, multiplicities) = distinct_knots(&exportable_knots(curve));
+        let points = joined(point_ids.iter().map(|id| format!("#{id}")));
+        let multiplicities = joined(multiplicities.iter().map(usize::to_string));
+        let knots = joined(knots.iter().map(|&u| real(u)));
+        let degree = curve.degree();
+        match curve.weights() {
+            None => out.push_str(&format!(
+                "#{id}=B_SPLINE_CURVE_WITH_KNOTS('',{degree},({points}),.UNSPECIFIED.,.F.,.F.,({multiplicities}),({knots}),.UNSPECIFIED.);\n"
+            )),
+            Some(weights) => {
+                let weights = joined(weights.iter().map(|&w| real(w)));
+                out.push_str(&format!(
+                    "#{id}=(BOUNDED_CURVE() B_SPLINE_CURVE({degree},({points}),.UNSPECIFIED.,.F.,.F.) B_SPLINE_CURVE_WITH_KNOTS(({multiplicities}),({knots}),.UNSPECIFIED.) CURVE() GEOMETRIC_REPRESENTATION_ITEM() RATIONAL_B_SPLINE_CURVE(({weights})) REPRESENTATION_ITEM(''));\n"
+                ));
+            }
+        }
+    }
+    let set = joined(curve_ids.iter().map(|id| format!("#{id}")));
+    out.push_str(&format!("#15=GEOMETRIC_CURVE_SET('curves',({set}));\n"));
+    out.push_str("ENDSEC;\nEND-ISO-10303-21;\n");
+    out
+}
+
+fn joined(items: impl Iterator<Item = String>) -> String {
+    items.collect::<Vec<_>>().join(",")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::spline::{CurveLimits, KnotConvention};
+
+    fn limits() -> FileLimits {
+        FileLimits::default()
+    }
+
+    fn file(data: &str) -> String {
+        format!(
+            "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION((''),'2;1');\nENDSEC;\nDATA;\n{data}\nENDSEC;\nEND-ISO-10303-21;\n"
+        )
+    }
+
+    const CUBIC: &str = "#1=CARTESIAN_POINT('',(0.,0.));\n#2=CARTESIAN_POINT('',(1.,2.));\n\
+        #3=CARTESIAN_POINT('',(3.,2.));\n#4=CARTESIAN_POINT('',(4.,0.E+000));\n\
+        #5=B_SPLINE_CURVE_WITH_KNOTS('',3,(#1,#2,#3,#4),.UNSPECIFIED.,.F.,.F.,(4,4),(0.,1.),.PIECEWISE_BEZIER_KNOTS.);";
+
+    #[test]
+    fn a_simple_curve_and_a_rational_complex_one_are_read() {
+        let rational = "#6=( BOUNDED_CURVE() B_SPLINE_CURVE(2,(#1,#2,#3),.UNSPECIFIED.,.F.,.F.)\n\
+            B_SPLINE_CURVE_WITH_KNOTS((3,3),(0.,2.),.UNSPECIFIED.) CURVE() GEOMETRIC_REPRESENTATION_ITEM()\n\
+            RATIONAL_B_SPLINE_CURVE((1.,0.5,1.)) REPRESENTATION_ITEM('') );\n#7=LINE('',#1,#8);\n/* a comment */";
+        let imported = read(&file(&format!("{CUBIC}\n{rational}")), &limits()).unwrap();
+        assert_eq!(imported.skipped, 1);
+        assert_eq!(imported.curves.len(), 2);
+        let cubic = &imported.curves[0];
+        assert_eq!(cubic.source, "#5");
+        assert_eq!(cubic.curve.convention(), KnotConvention::Multiplicities);
+        assert_eq!(
+            cubic.curve.knots(),
+            &[0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0]
+        );
+        let conic = &imported.curves[1].curve;
+        assert_eq!(conic.weights(), Some(&[1.0, 0.5, 1.0][..]));
+        assert_eq!(conic.degree(), 2);
+    }
+
+    #[test]
+    fn written_curves_read_back_bit_for_bit() {
+        let limits = CurveLimits::default();
+        let points = [
+            [0.1, 1.0 / 3.0, -2.0],
+            [1.5, 2e-9, 7.0],
+            [3.0, 2.0, 1e300],
+            [4.0, 0.0, 0.0],
+        ];
+        let knots = [0.0, 0.0, 0.0, 0.1, 0.7, 0.7, 0.7];
+        let spatial = Curve::new(2, &points, &knots, Some(&[1.0, 0.3, 2.0, 1.0]), &limits).unwrap();
+        let planar_points = [[0.0, 0.0], [1.0, 2.0], [3.0, 2.0], [4.0, 0.0]];
+        let planar = Curve::new(
+            3,
+            &planar_points,
+            &[0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
+            None,
+            &limits,
+        )
+        .unwrap();
+        let text = write(&[spatial.clone(), planar.clone()]);
+        let back = read(&text, &FileLimits::default()).unwrap();
+        assert_eq!(back.skipped, 0);
+        assert_eq!(back.curves[0].curve.knots(), spatial.knots());
+        assert_eq!(
+            back.curves[0].curve.control_points(),
+            spatial.control_points()
+        );
+        assert_eq!(back.curves[0].curve.weights(), spatial.weights());
+        // 2D as z = 0.
+        assert_eq!(
+            back.curves[1].curve.control_points(),
+            planar.control_points()
+        );
+        assert_eq!(
+            back.curves[1].curve.dimension(),
+            crate::spline::Dimension::Three
+        );
+    }
+
+    #[test]
+    fn malformed_files_are_errors_that_name_the_line() {
+        let whole = file(CUBIC);
+        for cut in [10, 40, 100, whole.len() - 5, whole.len() - 20] {
+            let error = read(&whole[..cut], &limits()).unwrap_err();
+            assert!(
+                matches!(error, FileError::Malformed { .. }),
+                "{cut}: {error}"
+            );
+        }
+        let broken = [
+            "#1=CARTESIAN_POINT('',(0.,0.));\n#1=CARTESIAN_POINT('',(0.,0.));",
+            "#5=B_SPLINE_CURVE_WITH_KNOTS('',3,(#1,#2,#3,#9),.U.,.F.,.F.,(4,4),(0.,1.),.U.);",
+            "#5=B_SPLINE_CURVE_WITH_KNOTS('',3,(#1),.U.,.F.,.F.,(4,4),(0.,1.));",
+            "#5=B_SPLINE_CURVE_WITH_KNOTS('',3.5,(#1),.U.,.F.,.F.,(4,4),(0.,1.),.U.);",
+            "#5=LINE('',#1,#2)",
+            "#5=LINE('',#1,#2;",
+            "#5=LINE('',#1,1E);",
+            "#5=LINE('',#1,'unclosed);",
+            "#5=X(1e999);",
+        ];
+        for data in broken {
+            let error = read(&file(data), &limits()).unwrap_err();
+            assert!(
+                matches!(error, FileError::Malformed { .. }),
+                "{data}: {error}"
+            );
+        }
+        let error = read(&file(&CUBIC.replace("(4,4)", "(4,5)")), &limits()).unwrap_err();
+        assert!(matches!(error, FileError::InvalidCurve { .. }), "{error}");
+    }
+
+    #[test]
+    fn limits_are_checked() {
+        let small = FileLimits {
+            max_bytes: 50,
+            ..limits()
+        };
+        assert!(matches!(
+            read(&file(CUBIC), &small),
+            Err(FileError::TooLarge { .. })
+        ));
+        let few = FileLimits {
+            max_entities: 3,
+            ..limits()
+        };
+        assert!(matches!(
+            read(&file(CUBIC), &few),
+            Err(FileError::TooManyEntities { max: 3 })
+        ));
+        let deep = format!("#1=X({}1{});", "(".repeat(40), ")".repeat(40));
+        assert!(matches!(
+            read(&file(&deep), &limits()),
+            Err(FileError::TooDeep { .. })
+        ));
+        let typed_deep = format!("#1=X({}1{});", "A(".repeat(40), ")".repeat(40));
+        assert!(matches!(
+            read(&file(&typed_deep), &limits()),
+            Err(FileError::TooDeep { .. })
+        ));
+    }
+}
