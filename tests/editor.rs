@@ -17,4 +17,5 @@ mod editor {
     pub mod picture;
     pub mod static_files;
     pub mod steps;
+
 }
