@@ -13,9 +13,12 @@ mod editor {
     pub mod api_key;
     pub mod browser;
     pub mod drag;
+    pub mod gestures;
     pub mod page;
     pub mod picture;
     pub mod static_files;
     pub mod steps;
+    pub mod timing;
+    pub mod view;
 
 }

@@ -24,7 +24,7 @@ const KEPT_TIMINGS = 2000;
  * Per preview drawn: { kind, stamp: the pointer event's timeStamp, handled: when its handler
  * ran, sent: when its request left, answered: when the answer was parsed, drawn: when the
  * preview was in the page, frame: the next animation frame after that } (performance.now()
- * milliseconds; `frame` filled in later).
+ * milliseconds; `frame` filled in later), and the kept family (JSON) of a point drag.
  */
 export const timings = [];
 
@@ -100,7 +100,7 @@ async function work(drag) {
       const shown = drag.kind === "point" ? await solveMove(drag, move, timing) : await redrawPole(drag, move, timing);
       if (live !== drag) break;
       drag.answered = move;
-      if (shown) record(timing);
+      if (shown) record(timing, drag);
     }
   } finally {
     drag.inFlight = false;
@@ -111,8 +111,9 @@ async function work(drag) {
   }
 }
 
-function record(timing) {
+function record(timing, drag) {
   timing.drawn = performance.now();
+  timing.family = drag.family ? JSON.stringify(drag.family) : null;
   timings.push(timing);
   if (timings.length > KEPT_TIMINGS) timings.shift();
   requestAnimationFrame(() => {

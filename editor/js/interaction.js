@@ -85,10 +85,15 @@ export function bind(elements, actions) {
     gesture = g;
     if (g.kind === "curve") {
       actions.pick(g.press).then((picked) => {
-        if (gesture !== g) return;
+        // The pointer may be up already: a quick flick still drags, then releases.
+        if (gesture !== g && !g.released) return;
         g.ready = picked;
-        if (!picked) g.kind = "background";
-        else if (g.moved && !g.cancelled) beginDrag(g);
+        if (!picked) {
+          g.kind = "background";
+        } else if (g.moved && !g.cancelled) {
+          beginDrag(g);
+          if (g.released) actions.release();
+        }
       });
     }
   });
@@ -153,6 +158,7 @@ export function bind(elements, actions) {
     document.body.dataset.panning = "false";
     if (canvas.hasPointerCapture(event.pointerId)) canvas.releasePointerCapture(event.pointerId);
     if (g.cancelled) return;
+    g.released = true;
     if (g.dragging) {
       if (cancelled) actions.cancel();
       else actions.release();
@@ -180,9 +186,10 @@ export function bind(elements, actions) {
     const target = event.target;
     const key = event.key;
     if (key === "Escape") {
-      if (gesture?.dragging) {
+      if (gesture) {
+        // The rest of this press does nothing (also when its pick is still on its way).
         gesture.cancelled = true;
-        actions.cancel();
+        if (gesture.dragging) actions.cancel();
       } else if (!isTextField(target)) {
         actions.escape();
       }

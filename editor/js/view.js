@@ -38,8 +38,12 @@ function thinned(frame, points, spacing) {
       last = pixel;
     }
   });
+  // The last point is kept too, instead of a kept one too close to it.
   const lastIndex = points.length - 1;
   if (lastIndex > 0 && kept[kept.length - 1] !== lastIndex) {
+    const end = toScreen(frame, points[lastIndex]);
+    const before = kept.length > 1 ? toScreen(frame, points[kept[kept.length - 1]]) : null;
+    if (before && Math.hypot(end[0] - before[0], end[1] - before[1]) < spacing) kept.pop();
     kept.push(lastIndex);
   }
   return kept;
