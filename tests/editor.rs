@@ -14,8 +14,12 @@ mod editor {
     pub mod browser;
     pub mod drag;
     pub mod gestures;
+    pub mod layout;
     pub mod page;
     pub mod picture;
+    pub mod precision;
+    pub mod regions;
+    pub mod resilience;
     pub mod static_files;
     pub mod steps;
     pub mod timing;

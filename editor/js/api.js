@@ -134,9 +134,10 @@ export function insertKnotsForEditing(curve, parameter) {
 }
 
 /** POST /v1/shape/regions: the regions' polygons of both sides at `parameter`, for the same
- * `keep_domain` as solving (the default, sent explicitly). */
-export function regions(curve, parameter) {
-  return post("/v1/shape/regions", { curve, parameter, side: "both", keep_domain: true });
+ * `keep_domain` as solving (the default, sent explicitly), within `tolerance` of the true
+ * boundaries. */
+export function regions(curve, parameter, tolerance) {
+  return post("/v1/shape/regions", { curve, parameter, side: "both", keep_domain: true, tolerance });
 }
 
 /**

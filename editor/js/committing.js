@@ -11,11 +11,21 @@ import { drawingOf } from "./drawing.js";
 import { describeProblem } from "./problems.js";
 import { fit, needsFit } from "./viewport.js";
 
+/** How far (pixels, at the zoom of the request) a drawn region's edge may be from the true
+ * boundary. */
+const REGION_PIXELS = 0.5;
+
+/** The regions answer at `parameter` of `curve`, drawn within REGION_PIXELS at `frame`. */
+export function regionsAt(curve, parameter, frame) {
+  return api.regions(curve, parameter, REGION_PIXELS / frame.scale);
+}
+
 /** The drawing of `curve` and, with the knots method on, its reachable regions at
  * `parameter`; or { problem } when the drawing cannot be had. */
 export async function drawn(curve, parameter, methods) {
   const wantsRegions = parameter !== undefined && methods.includes("knots") && !geometry.editingRefusal(curve);
-  const [drawing, regions] = await Promise.all([drawingOf(curve), wantsRegions ? api.regions(curve, parameter) : null]);
+  const frame = store.get().view.frame;
+  const [drawing, regions] = await Promise.all([drawingOf(curve), wantsRegions ? regionsAt(curve, parameter, frame) : null]);
   if (drawing.problem) return { problem: drawing.problem };
   return {
     drawing,

@@ -11,8 +11,8 @@ export function parseCurve(text) {
   let value;
   try {
     value = JSON.parse(text);
-  } catch (error) {
-    return { error: `The text is not JSON: ${describeSyntaxError(text, error)}` };
+  } catch {
+    return { error: `The text is not JSON: ${describeSyntaxError(text)}` };
   }
   const wrapped = value && typeof value === "object" && value.curve && typeof value.curve === "object";
   const curve = wrapped ? value.curve : value;

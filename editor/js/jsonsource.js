@@ -96,3 +96,89 @@ export function locate(text, pointer) {
   }
   return positionOf(text, i);
 }
+
+/** Nesting deeper than this is reported as an error (no curve is that deep). */
+const DEEPEST = 512;
+const NUMBER = /-?(?:0|[1-9]\d*)(?:\.\d+)?(?:[eE][+-]?\d+)?/y;
+
+/**
+ * The offset of the first character that makes `text` invalid JSON (RFC 8259), or null
+ * when it is valid. (JSON.parse's own messages do not always say where.)
+ */
+export function syntaxErrorAt(text) {
+  let i = 0;
+  const fail = () => {
+    throw new RangeError(String(i));
+  };
+  const space = () => {
+    while (i < text.length && SPACE.includes(text[i])) i += 1;
+  };
+  const string = () => {
+    i += 1;
+    while (i < text.length && text[i] !== '"') {
+      if (text[i] < " ") fail();
+      i += text[i] === "\\" ? 2 : 1;
+    }
+    if (i >= text.length) fail();
+    i += 1;
+  };
+  const members = (close, member) => {
+    i += 1;
+    space();
+    if (text[i] === close) {
+      i += 1;
+      return;
+    }
+    for (;;) {
+      member();
+      space();
+      if (text[i] === ",") {
+        i += 1;
+      } else if (text[i] === close) {
+        i += 1;
+        return;
+      } else {
+        fail();
+      }
+    }
+  };
+  const value = (depth) => {
+    if (depth > DEEPEST) fail();
+    space();
+    const c = text[i];
+    if (c === "{") {
+      members("}", () => {
+        space();
+        if (text[i] !== '"') fail();
+        string();
+        space();
+        if (text[i] !== ":") fail();
+        i += 1;
+        value(depth + 1);
+      });
+    } else if (c === "[") {
+      members("]", () => value(depth + 1));
+    } else if (c === '"') {
+      string();
+    } else {
+      NUMBER.lastIndex = i;
+      const number = NUMBER.exec(text);
+      if (number && number[0]) {
+        i += number[0].length;
+        return;
+      }
+      const word = ["true", "false", "null"].find((w) => text.startsWith(w, i));
+      if (!word) fail();
+      i += word.length;
+    }
+  };
+  try {
+    value(0);
+    space();
+    if (i < text.length) fail();
+    return null;
+  } catch (error) {
+    if (error instanceof RangeError && /^\d+$/.test(error.message)) return Number(error.message);
+    throw error;
+  }
+}

@@ -7,7 +7,7 @@ import * as api from "./api.js";
 import * as geometry from "./geometry.js";
 import * as model from "./state.js";
 import * as store from "./store.js";
-import { failureMessage } from "./committing.js";
+import { failureMessage, regionsAt } from "./committing.js";
 import { drawingOf } from "./drawing.js";
 import { PICK_RADIUS } from "./view.js";
 
@@ -38,7 +38,7 @@ export function pick(point) {
     const knotsOn = state.methods.includes("knots");
     let base = curve;
     let message = `Picked t = ${t.toPrecision(6)}. Drag the dot, or nudge it with the arrow keys.`;
-    let regions = knotsOn ? await api.regions(curve, t) : null;
+    let regions = knotsOn ? await regionsAt(curve, t, state.view.frame) : null;
     if (!store.isCurrent(mine)) return false;
     let drawing = store.get().drawing;
     if (knotsOn && (!regions.ok || !geometry.hasUsableRegion(curve, regions.value))) {
@@ -52,7 +52,7 @@ export function pick(point) {
         base = refined.value.curve;
         const values = refined.value.inserted.map((u) => +u.toPrecision(4)).join(", ");
         message = `No knot could move near t = ${t.toPrecision(4)}: inserted knots ${values} (the same curve, more control points; undone with the edit). Drag the dot.`;
-        const [again, marks] = await Promise.all([api.regions(base, t), drawingOf(base)]);
+        const [again, marks] = await Promise.all([regionsAt(base, t, state.view.frame), drawingOf(base)]);
         if (!store.isCurrent(mine)) return false;
         regions = again;
         if (!marks.problem) drawing = marks;

@@ -2,7 +2,7 @@
 // JSON pointers into the editor's request; when the curve came from a text the designer
 // pasted or opened, they are turned into the line, column and pointer of that text instead.
 
-import { locate, positionOf } from "./jsonsource.js";
+import { locate, positionOf, syntaxErrorAt } from "./jsonsource.js";
 
 /** serde's " at line 1 column 69": a place in the editor's request, not in the user's text. */
 const REQUEST_POSITION = /\s+at line \d+ column \d+$/;
@@ -46,11 +46,10 @@ export function describeProblem(problem, source = null) {
   return detail && detail !== problem.title ? `${problem.title}: ${detail}` : problem.title;
 }
 
-/** A JSON.parse error of `text` as "line L, column C: what". */
-export function describeSyntaxError(text, error) {
-  const offset = /position (\d+)/.exec(error.message);
-  const what = error.message.replace(/\s*\(line \d+ column \d+\)/, "").replace(/ in JSON at position \d+/, "");
-  if (!offset) return what;
-  const { line, column } = positionOf(text, Number(offset[1]));
+/** Why `text` (which JSON.parse refused) is not JSON: "line L, column C: unexpected …". */
+export function describeSyntaxError(text) {
+  const offset = syntaxErrorAt(text) ?? text.length;
+  const { line, column } = positionOf(text, offset);
+  const what = offset >= text.length ? "the text ends too early" : `unexpected ${JSON.stringify(text[offset])}`;
   return `line ${line}, column ${column}: ${what}`;
 }
