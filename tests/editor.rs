@@ -24,5 +24,4 @@ mod editor {
     pub mod steps;
     pub mod timing;
     pub mod view;
-
 }

@@ -28,6 +28,9 @@ const KEPT_TIMINGS = 2000;
  */
 export const timings = [];
 
+/** Pointer moves the last drag received (for tests: every move reaches the page). */
+export const moves = { count: 0 };
+
 /** The drag in progress (null when none): what the controller needs beyond the state. */
 let live = null;
 
@@ -36,6 +39,7 @@ export function isDragging() {
 }
 
 function begin(fields) {
+  moves.count = 0;
   live = { latest: null, answered: null, inFlight: false, releasing: false, failed: false, ...fields };
   document.body.dataset.dragging = "true";
 }
@@ -82,6 +86,7 @@ function draggedTo(point) {
 /** The pointer is at `point` (curve coordinates); `stamp` is the event's timeStamp. */
 export function dragTo(point, stamp) {
   if (!live) return;
+  moves.count += 1;
   const snapped = draggedTo(point);
   live.latest = { target: snapped.point, snapped: snapped.to, stamp, handled: performance.now() };
   if (!live.inFlight) {
@@ -266,13 +271,11 @@ function finish(drag) {
   return drag.kind === "pole" ? finishPole(drag) : finishPoint(drag);
 }
 
+/** Commits the curve with the dragged control point where the last preview showed it (the
+ * pick is dropped: its regions belong to the old curve). */
 function finishPole(drag) {
   const curve = geometry.withPole(drag.base, drag.index, drag.point);
-  const pick = store.get().pick;
-  return commitCurve(curve, { message: `Moved control point ${drag.index}.`, pick: null, family: null, lastTarget: drag.point }).then((done) => {
-    if (!done && pick) store.set({ ...store.get(), pick });
-    return done;
-  });
+  return commitCurve(curve, { message: `Moved control point ${drag.index}.`, lastTarget: drag.point });
 }
 
 /** Commits the kept family's solution for the whole curve at the last target, with the list

@@ -126,6 +126,7 @@ function start() {
   });
   document.body.dataset.tool = "edit";
   window.editorTimings = dragging.timings;
+  window.editorMoves = dragging.moves;
   committing.refresh("The sample cubic: press on the curve and drag it.").then(() => {
     document.body.dataset.ready = "true";
   });

@@ -9,7 +9,8 @@ use super::browser::Browser;
 use super::page::Page;
 use super::steps::{
     BOTH, apply, close, drag_target, numbers, paste, pick, pixel_inside_a_region,
-    pixel_outside_every_region, point_at, sample, smallest_deviation, solve, target_dir, within_pixels,
+    pixel_outside_every_region, point_at, sample, smallest_deviation, solve, target_dir,
+    within_pixels,
 };
 use crate::helpers::spawn_app;
 
@@ -18,7 +19,10 @@ use crate::helpers::spawn_app;
 async fn same_target(page: &Page<'_>, expected: [f64; 2]) -> [f64; 2] {
     let target = page.target().await;
     let scale = page.frame().await["scale"].as_f64().unwrap();
-    assert!(within_pixels(target, expected, scale, 1e-3), "{target:?} vs {expected:?}");
+    assert!(
+        within_pixels(target, expected, scale, 1e-3),
+        "{target:?} vs {expected:?}"
+    );
     target
 }
 
@@ -257,7 +261,10 @@ async fn a_single_bezier_gets_knots_inserted_and_then_drags() {
     page.settle().await;
     assert!(page.picked().await.is_none());
     let message = page.data("message").await;
-    assert!(message.contains("3D curve") && message.contains("control points"), "{message}");
+    assert!(
+        message.contains("3D curve") && message.contains("control points"),
+        "{message}"
+    );
 
     // Broken JSON and a curve the API refuses: readable messages, the page keeps working.
     page.run(

@@ -9,8 +9,8 @@ use serde_json::{Value, json};
 use super::browser::Browser;
 use super::page::Page;
 use super::steps::{
-    BOTH, apply, drag_target, family_of, numbers, pick, point_at, sample,
-    smallest_deviation, solve, solve_family, within_pixels,
+    BOTH, apply, drag_target, family_of, numbers, pick, point_at, sample, smallest_deviation,
+    solve, solve_family, within_pixels,
 };
 use crate::helpers::spawn_app;
 
@@ -64,7 +64,12 @@ async fn a_click_changes_nothing_and_a_press_on_the_curve_drags_in_one_gesture()
     let moved = [release[0] - press[0], release[1] - press[1]];
     let start = point_at(&app, &original, t).await;
     assert!(
-        within_pixels(target, [start[0] + moved[0], start[1] + moved[1]], scale, 0.6),
+        within_pixels(
+            target,
+            [start[0] + moved[0], start[1] + moved[1]],
+            scale,
+            0.6
+        ),
         "{target:?}"
     );
     page.ctrl_z(false).await;
@@ -91,7 +96,11 @@ async fn esc_cancels_a_drag_and_the_cursor_says_grab_and_grabbing() {
     let width = "return getComputedStyle(document.querySelector('#scene .layer-curve .curve')).strokeWidth;";
     let plain = page.run(width, vec![]).await;
     page.move_to((on_curve.0 - 200, on_curve.1 - 200)).await;
-    assert_eq!(page.style_at((on_curve.0 - 200, on_curve.1 - 200), "cursor").await, "crosshair");
+    assert_eq!(
+        page.style_at((on_curve.0 - 200, on_curve.1 - 200), "cursor")
+            .await,
+        "crosshair"
+    );
     page.move_to(on_curve).await;
     assert_eq!(page.style_at(on_curve, "cursor").await, "grab");
     let hovered = page.run(width, vec![]).await;
@@ -107,7 +116,10 @@ async fn esc_cancels_a_drag_and_the_cursor_says_grab_and_grabbing() {
         "document.querySelector('#scene .layer-preview .preview') !== null",
     )
     .await;
-    assert_eq!(page.style_at((dot.0 + 14, dot.1 - 16), "cursor").await, "grabbing");
+    assert_eq!(
+        page.style_at((dot.0 + 14, dot.1 - 16), "cursor").await,
+        "grabbing"
+    );
     page.key(Key::Escape.into(), false).await;
     page.settle().await;
     let preview = "return document.querySelectorAll('#scene .layer-preview > *').length;";
@@ -144,14 +156,20 @@ async fn a_dragged_control_point_is_in_the_export_and_undoes() {
     page.drag(from, &[(from.0 + 10, from.1 - 12), to]).await;
     page.click_id("export").await;
     let exported = page
-        .run("return document.getElementById('curve-json').value;", vec![])
+        .run(
+            "return document.getElementById('curve-json').value;",
+            vec![],
+        )
         .await;
     let exported: Value = serde_json::from_str(exported.as_str().unwrap()).unwrap();
     let moved = page.target().await;
     let scale = page.frame().await["scale"].as_f64().unwrap();
     let (a, b) = (page.to_curve(from).await, page.to_curve(to).await);
     let expected = [pole[0] + b[0] - a[0], pole[1] + b[1] - a[1]];
-    assert!(within_pixels(moved, expected, scale, 1e-3), "{moved:?} vs {expected:?}");
+    assert!(
+        within_pixels(moved, expected, scale, 1e-3),
+        "{moved:?} vs {expected:?}"
+    );
     let mut wanted = original.clone();
     wanted["control_points"][5] = json!(moved);
     assert_eq!(numbers(&exported), numbers(&wanted));
@@ -161,7 +179,10 @@ async fn a_dragged_control_point_is_in_the_export_and_undoes() {
         .post_json("/v1/curves/bezier", &json!({"curve": wanted}))
         .await;
     let path = page
-        .run("return document.querySelector('#scene .layer-curve .curve').getAttribute('d');", vec![])
+        .run(
+            "return document.querySelector('#scene .layer-curve .curve').getAttribute('d');",
+            vec![],
+        )
         .await;
     assert_eq!(path, drawn["svg_path"]);
     page.ctrl_z(false).await;
@@ -184,7 +205,10 @@ async fn path_where_the_default_switches(
         let path: Vec<(i64, i64)> = (3..=24)
             .map(|step| {
                 let r = f64::from(step) * 2.0;
-                (dot.0 + (r * angle.cos()).round() as i64, dot.1 + (r * angle.sin()).round() as i64)
+                (
+                    dot.0 + (r * angle.cos()).round() as i64,
+                    dot.1 + (r * angle.sin()).round() as i64,
+                )
             })
             .collect();
         let mut families = Vec::new();
@@ -214,7 +238,11 @@ async fn a_drag_keeps_one_family_unless_a_digit_switches_it() {
     page.press_at(dot).await;
     for &pixel in &path {
         page.move_to(pixel).await;
-        page.wait_until("the move is solved", "document.body.dataset.busy !== 'true'").await;
+        page.wait_until(
+            "the move is solved",
+            "document.body.dataset.busy !== 'true'",
+        )
+        .await;
     }
     page.release().await;
     page.settle().await;
@@ -228,9 +256,15 @@ async fn a_drag_keeps_one_family_unless_a_digit_switches_it() {
         .map(|f| serde_json::from_str(f.as_str().unwrap()).unwrap())
         .collect();
     assert!(families.len() >= path.len() / 2, "{families:?}");
-    assert!(families.iter().all(|f| *f == families[0]), "the family switched: {families:?}");
+    assert!(
+        families.iter().all(|f| *f == families[0]),
+        "the family switched: {families:?}"
+    );
     let target = page.target().await;
-    let expected = apply(&original, &solve_family(&app, &original, t, target, &families[0]).await);
+    let expected = apply(
+        &original,
+        &solve_family(&app, &original, t, target, &families[0]).await,
+    );
     assert_eq!(numbers(&page.curve().await), numbers(&expected));
     page.ctrl_z(false).await;
 
@@ -240,21 +274,75 @@ async fn a_drag_keeps_one_family_unless_a_digit_switches_it() {
     let half = path.len() / 2;
     for &pixel in &path[..half] {
         page.move_to(pixel).await;
-        page.wait_until("the move is solved", "document.body.dataset.busy !== 'true'").await;
+        page.wait_until(
+            "the move is solved",
+            "document.body.dataset.busy !== 'true'",
+        )
+        .await;
     }
     let first: Value = serde_json::from_str(&page.data("family").await).unwrap();
     page.key('2', false).await;
     for &pixel in &path[half..] {
         page.move_to(pixel).await;
-        page.wait_until("the move is solved", "document.body.dataset.busy !== 'true'").await;
+        page.wait_until(
+            "the move is solved",
+            "document.body.dataset.busy !== 'true'",
+        )
+        .await;
     }
     let switched: Value = serde_json::from_str(&page.data("family").await).unwrap();
     assert_ne!(switched, first);
     page.release().await;
     page.settle().await;
     let target = page.target().await;
-    let expected = apply(&original, &solve_family(&app, &original, t, target, &switched).await);
+    let expected = apply(
+        &original,
+        &solve_family(&app, &original, t, target, &switched).await,
+    );
     assert_eq!(numbers(&page.curve().await), numbers(&expected));
+    assert_eq!(page.script_errors().await, Vec::<String>::new());
+    browser.close().await;
+}
+
+#[tokio::test]
+async fn control_points_of_any_degree_and_of_3d_curves_drag() {
+    let app = spawn_app().await;
+    let browser = Browser::start().await;
+    let page = Page::open(&browser.client, &app.address).await;
+    let quadratic = json!({"degree": 2, "control_points": [[0, 0], [2, 4], [5, 4], [7, 0]],
+                           "knots": [0, 0, 0, 0.5, 1, 1, 1]});
+    let spatial = json!({"degree": 3, "control_points": [[0, 0, 1], [2, 4, 2], [5, 4, 3], [7, 0, 4]],
+                         "knots": [0, 0, 0, 0, 1, 1, 1, 1]});
+    for curve in [quadratic, spatial] {
+        super::steps::paste(&page, &curve).await;
+        assert!(
+            page.data("message")
+                .await
+                .contains("Drag its control points")
+        );
+        let from = page.to_screen([5.0, 4.0]).await;
+        let to = (from.0 + 20, from.1 + 25);
+        page.drag(from, &[(from.0 + 10, from.1 + 12), to]).await;
+        let moved = page.curve().await;
+        let (a, b) = (page.to_curve(from).await, page.to_curve(to).await);
+        let pole = &moved["control_points"][2];
+        let scale = page.frame().await["scale"].as_f64().unwrap();
+        let expected = [5.0 + b[0] - a[0], 4.0 + b[1] - a[1]];
+        let got = [pole[0].as_f64().unwrap(), pole[1].as_f64().unwrap()];
+        assert!(
+            within_pixels(got, expected, scale, 1e-3),
+            "{got:?} vs {expected:?}"
+        );
+        if curve["control_points"][2].as_array().unwrap().len() == 3 {
+            assert_eq!(pole[2], json!(3), "z is kept");
+        }
+        for other in [0, 1, 3] {
+            assert_eq!(
+                moved["control_points"][other],
+                curve["control_points"][other]
+            );
+        }
+    }
     assert_eq!(page.script_errors().await, Vec::<String>::new());
     browser.close().await;
 }

@@ -28,7 +28,10 @@ async fn list_in_view(page: &Page<'_>) -> (bool, usize) {
             vec![],
         )
         .await;
-    (value[0].as_bool().unwrap(), value[1].as_u64().unwrap() as usize)
+    (
+        value[0].as_bool().unwrap(),
+        value[1].as_u64().unwrap() as usize,
+    )
 }
 
 #[tokio::test]
@@ -44,10 +47,16 @@ async fn at_800_px_the_list_stays_in_view_and_is_numbered_by_solution() {
     let inside = pixel_inside_a_region(&page, &app, &original, t, dot).await;
     page.press_at(dot).await;
     page.move_to(inside).await;
-    page.wait_until("the preview is drawn", "document.querySelector('#solutions > li') !== null")
-        .await;
+    page.wait_until(
+        "the preview is drawn",
+        "document.querySelector('#solutions > li') !== null",
+    )
+    .await;
     let (inside, count) = list_in_view(&page).await;
-    assert!(inside && count > 1, "during the drag: {count} solutions, in view: {inside}");
+    assert!(
+        inside && count > 1,
+        "during the drag: {count} solutions, in view: {inside}"
+    );
     let png = browser.client.screenshot().await.expect("screenshot");
     std::fs::write(target_dir().join("editor-screenshot-800.png"), png).unwrap();
     page.release().await;
@@ -72,7 +81,10 @@ async fn at_800_px_the_list_stays_in_view_and_is_numbered_by_solution() {
             vec![],
         )
         .await;
-    assert!(structure[0].as_str().unwrap().contains("nearest"), "{structure}");
+    assert!(
+        structure[0].as_str().unwrap().contains("nearest"),
+        "{structure}"
+    );
     assert_ne!(structure[1], json!("OL"));
     assert_eq!(structure[3], json!(true), "{structure}");
     assert_eq!(structure[2].to_string(), page.data("solutions").await);
@@ -117,8 +129,15 @@ async fn errors_point_into_the_pasted_json_once_and_nothing_stale_stays() {
         let place = format!("line {line}, column {column}");
         assert!(error.contains(&place), "{error} (expected {place})");
         assert_eq!(error.matches("non-decreasing").count(), 1, "{error}");
-        assert!(!error.contains("line 1 column"), "points into the editor's request: {error}");
-        assert_eq!(page.data("message").await, "", "a stale message beside the error");
+        assert!(
+            !error.contains("line 1 column"),
+            "points into the editor's request: {error}"
+        );
+        assert_eq!(
+            page.data("message").await,
+            "",
+            "a stale message beside the error"
+        );
         let shown = page
             .run("return [document.getElementById('message').offsetHeight, document.getElementById('error').textContent];", vec![])
             .await;
@@ -130,12 +149,18 @@ async fn errors_point_into_the_pasted_json_once_and_nothing_stale_stays() {
     load_text(&page, text).await;
     let error = page.data("error").await;
     let (line, column) = line_column(text, "\"x\"");
-    assert!(error.contains(&format!("line {line}, column {column}")), "{error}");
+    assert!(
+        error.contains(&format!("line {line}, column {column}")),
+        "{error}"
+    );
     let text = "{\"degree\": 3,\n \"knots\": [0, 1,, 2]}";
     load_text(&page, text).await;
     let error = page.data("error").await;
     let (line, column) = line_column(text, ",,");
-    let place = format!("The text is not JSON: line {line}, column {}: unexpected \",\"", column + 1);
+    let place = format!(
+        "The text is not JSON: line {line}, column {}: unexpected \",\"",
+        column + 1
+    );
     assert_eq!(error, place);
     // The next action clears the error.
     page.click_id("sample").await;
@@ -152,12 +177,17 @@ async fn the_same_file_opens_twice() {
     let browser = Browser::start().await;
     let page = Page::open(&browser.client, &app.address).await;
     let curve = json!({"degree": 3, "control_points": [[0, 0], [2, 3], [4, 3], [6, 0]], "knots": [0, 0, 0, 0, 1, 1, 1, 1]});
-    let path = std::env::temp_dir().join(format!("knotshape-editor-open-{}.json", std::process::id()));
+    let path =
+        std::env::temp_dir().join(format!("knotshape-editor-open-{}.json", std::process::id()));
     std::fs::write(&path, curve.to_string()).unwrap();
     for _ in 0..2 {
         let input = browser.client.find(Locator::Id("open-file")).await.unwrap();
         input.send_keys(path.to_str().unwrap()).await.unwrap();
-        page.wait_until("the file is loaded", "document.body.dataset.message.startsWith('Opened')").await;
+        page.wait_until(
+            "the file is loaded",
+            "document.body.dataset.message.startsWith('Opened')",
+        )
+        .await;
         page.settle().await;
         assert_eq!(numbers(&page.curve().await), numbers(&curve));
         page.click_id("sample").await;
@@ -177,9 +207,15 @@ async fn a_favicon_no_missing_file_and_keyboard_reachability() {
     let browser = Browser::start().await;
     let page = Page::open(&browser.client, &app.address).await;
     let icon = page
-        .run("return document.querySelector('link[rel=icon]').href;", vec![])
+        .run(
+            "return document.querySelector('link[rel=icon]').href;",
+            vec![],
+        )
         .await;
-    assert!(icon.as_str().unwrap().ends_with("/editor/favicon.svg"), "{icon}");
+    assert!(
+        icon.as_str().unwrap().ends_with("/editor/favicon.svg"),
+        "{icon}"
+    );
 
     // Tab reaches the drawing; its keys work there.
     let mut reached = false;
@@ -199,17 +235,35 @@ async fn a_favicon_no_missing_file_and_keyboard_reachability() {
     assert!((page.frame().await["scale"].as_f64().unwrap() / before - 1.0).abs() < 1e-9);
     // Every shortcut the page handles is listed.
     let listed: Value = page
-        .run("return [...document.querySelectorAll('#shortcuts dt')].map((d) => d.textContent);", vec![])
+        .run(
+            "return [...document.querySelectorAll('#shortcuts dt')].map((d) => d.textContent);",
+            vec![],
+        )
         .await;
     let listed: Vec<String> = serde_json::from_value(listed).unwrap();
-    for key in ["Tab", "Esc", "F", "Space + drag", "1 – 9", "Ctrl+Z / Ctrl+Shift+Z", "← ↑ → ↓", "+ / −", "V / H"] {
-        assert!(listed.iter().any(|entry| entry == key), "{key} not listed in {listed:?}");
+    for key in [
+        "Tab",
+        "Esc",
+        "F",
+        "Space + drag",
+        "1 – 9",
+        "Ctrl+Z / Ctrl+Shift+Z",
+        "← ↑ → ↓",
+        "+ / −",
+        "V / H",
+    ] {
+        assert!(
+            listed.iter().any(|entry| entry == key),
+            "{key} not listed in {listed:?}"
+        );
     }
     // Nothing the page asked for was missing (no 404, e.g. for /favicon.ico).
     let metrics = app.get("/metrics").await.text().await.unwrap();
     let missing: Vec<&str> = metrics
         .lines()
-        .filter(|line| line.starts_with("knotshape_http_requests_total") && line.contains("status=\"404\""))
+        .filter(|line| {
+            line.starts_with("knotshape_http_requests_total") && line.contains("status=\"404\"")
+        })
         .collect();
     assert!(missing.is_empty(), "{missing:?}");
     assert_eq!(page.script_errors().await, Vec::<String>::new());

@@ -267,11 +267,12 @@ impl<'a> Page<'a> {
         steps: i64,
     ) {
         let finger = |name: &str, from: (i64, i64), to: (i64, i64)| {
-            let mut touch = TouchActions::new(name.to_owned())
-                .then(move_to(from))
-                .then(PointerAction::Down {
-                    button: MOUSE_BUTTON_LEFT,
-                });
+            let mut touch =
+                TouchActions::new(name.to_owned())
+                    .then(move_to(from))
+                    .then(PointerAction::Down {
+                        button: MOUSE_BUTTON_LEFT,
+                    });
             for step in 1..=steps {
                 let at = (
                     from.0 + (to.0 - from.0) * step / steps,
@@ -304,7 +305,10 @@ impl<'a> Page<'a> {
         mouse = mouse.then(PointerAction::Up {
             button: MOUSE_BUTTON_LEFT,
         });
-        self.client.perform_actions(mouse).await.expect("paced drag");
+        self.client
+            .perform_actions(mouse)
+            .await
+            .expect("paced drag");
     }
 
     /// The computed CSS `property` of the topmost element at viewport `pixel`.

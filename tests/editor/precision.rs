@@ -27,9 +27,7 @@ async fn arrow_keys_nudge_the_target_and_typed_coordinates_move_the_point() {
     let (t, _) = pick(&page, &app, &original, 0.42).await;
     let start = point(&page.picked().await.unwrap()["point"]);
     let scale = page.frame().await["scale"].as_f64().unwrap();
-    let focused = page
-        .run("return document.activeElement.id;", vec![])
-        .await;
+    let focused = page.run("return document.activeElement.id;", vec![]).await;
     assert_eq!(focused, json!("canvas"), "the press focuses the drawing");
     for _ in 0..3 {
         page.key(Key::Right.into(), false).await;
@@ -52,10 +50,16 @@ async fn arrow_keys_nudge_the_target_and_typed_coordinates_move_the_point() {
     x.send_keys("5.25").await.unwrap();
     let y = browser.client.find(Locator::Id("target-y")).await.unwrap();
     y.clear().await.unwrap();
-    y.send_keys(&format!("2.75{}", char::from(Key::Enter))).await.unwrap();
+    y.send_keys(&format!("2.75{}", char::from(Key::Enter)))
+        .await
+        .unwrap();
     page.settle().await;
     let committed = page.curve().await;
-    assert!(close(point_at(&app, &committed, t).await, [5.25, 2.75]), "{}", page.describe().await);
+    assert!(
+        close(point_at(&app, &committed, t).await, [5.25, 2.75]),
+        "{}",
+        page.describe().await
+    );
     assert_eq!(page.target().await, [5.25, 2.75]);
     assert_eq!(page.script_errors().await, Vec::<String>::new());
     browser.close().await;
@@ -70,7 +74,8 @@ async fn snapping_to_the_grid_and_to_control_points_and_the_readout() {
     page.click_id("method-knots").await;
     page.click_id("snap-grid").await;
     let (t, dot) = pick(&page, &app, &original, 0.42).await;
-    page.drag(dot, &[(dot.0 + 6, dot.1 - 4), (dot.0 + 13, dot.1 - 9)]).await;
+    page.drag(dot, &[(dot.0 + 6, dot.1 - 4), (dot.0 + 13, dot.1 - 9)])
+        .await;
     let target = page.target().await;
     // The grid step is 1, 2 or 5 times a power of ten; the target is on a grid point.
     let grid = page
@@ -84,7 +89,10 @@ async fn snapping_to_the_grid_and_to_control_points_and_the_readout() {
         .unwrap();
     for value in target {
         let steps = value / grid;
-        assert!((steps - steps.round()).abs() < 1e-6, "{target:?} on a grid of {grid}");
+        assert!(
+            (steps - steps.round()).abs() < 1e-6,
+            "{target:?} on a grid of {grid}"
+        );
     }
     assert!(close(point_at(&app, &page.curve().await, t).await, target));
     page.ctrl_z(false).await;
@@ -92,23 +100,52 @@ async fn snapping_to_the_grid_and_to_control_points_and_the_readout() {
 
     // Control point 5 dragged next to control point 4 lands on it; snapping off, it does not.
     page.click_id("snap-poles").await;
-    let (from, beside) = (page.to_screen([8.0, 0.0]).await, page.to_screen([6.0, 1.0]).await);
-    page.drag(from, &[(from.0 - 20, from.1 - 10), (beside.0 + 4, beside.1 - 3)]).await;
+    let (from, beside) = (
+        page.to_screen([8.0, 0.0]).await,
+        page.to_screen([6.0, 1.0]).await,
+    );
+    page.drag(
+        from,
+        &[(from.0 - 20, from.1 - 10), (beside.0 + 4, beside.1 - 3)],
+    )
+    .await;
     assert_eq!(point(&page.curve().await["control_points"][5]), [6.0, 1.0]);
     page.ctrl_z(false).await;
     page.click_id("snap-poles").await;
-    page.drag(from, &[(from.0 - 20, from.1 - 10), (beside.0 + 4, beside.1 - 3)]).await;
+    page.drag(
+        from,
+        &[(from.0 - 20, from.1 - 10), (beside.0 + 4, beside.1 - 3)],
+    )
+    .await;
     assert_ne!(point(&page.curve().await["control_points"][5]), [6.0, 1.0]);
+
+    // Control point 6 dragged next to the curve's point at the knot 0.75 lands on it.
+    page.ctrl_z(false).await;
+    page.click_id("snap-knots").await;
+    let knot = point_at(&app, &original, 0.75).await;
+    let (from, beside) = (page.to_screen([9.0, 2.0]).await, page.to_screen(knot).await);
+    page.drag(
+        from,
+        &[(from.0 - 10, from.1 + 10), (beside.0 - 3, beside.1 + 4)],
+    )
+    .await;
+    assert_eq!(point(&page.curve().await["control_points"][6]), knot);
 
     // The readout shows the pointer's coordinates.
     let pixel = (beside.0 + 40, beside.1 + 30);
     page.move_to(pixel).await;
     let at = page.to_curve(pixel).await;
     let readout = page
-        .run("return document.getElementById('readout').textContent;", vec![])
+        .run(
+            "return document.getElementById('readout').textContent;",
+            vec![],
+        )
         .await;
     let shown = format!("pointer x {:.2}  y {:.2}", at[0], at[1]);
-    assert!(readout.as_str().unwrap().contains(&shown), "{readout} vs {shown}");
+    assert!(
+        readout.as_str().unwrap().contains(&shown),
+        "{readout} vs {shown}"
+    );
     assert_eq!(page.script_errors().await, Vec::<String>::new());
     browser.close().await;
 }

@@ -55,12 +55,17 @@ fn points_inside(polygon: &Polygon, count: usize, inset: f64) -> Vec<[f64; 2]> {
     }
     let mut state: u64 = 0x9e37_79b9_7f4a_7c15;
     let mut next = || {
-        state = state.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
+        state = state
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
         (state >> 11) as f64 / (1u64 << 53) as f64
     };
     let mut points = Vec::new();
     for _ in 0..10_000 {
-        let p = [low[0] + (high[0] - low[0]) * next(), low[1] + (high[1] - low[1]) * next()];
+        let p = [
+            low[0] + (high[0] - low[0]) * next(),
+            low[1] + (high[1] - low[1]) * next(),
+        ];
         if inside(p, polygon) && distance_to_edge(p, polygon) >= inset {
             points.push(p);
             if points.len() == count {
@@ -93,7 +98,13 @@ async fn drawn(page: &Page<'_>) -> Vec<(String, String, Polygon)> {
         .as_array()
         .unwrap()
         .iter()
-        .map(|r| (r[0].as_str().unwrap().to_owned(), r[1].as_str().unwrap().to_owned(), polygon(&r[2])))
+        .map(|r| {
+            (
+                r[0].as_str().unwrap().to_owned(),
+                r[1].as_str().unwrap().to_owned(),
+                polygon(&r[2]),
+            )
+        })
         .collect()
 }
 
@@ -113,9 +124,12 @@ async fn every_drawn_region_point_is_reachable_and_only_those_regions_are_drawn(
     let mut total_sampled = 0;
     for wanted in [0.42, 0.1, 0.8] {
         // Zoomed in about the point (regions are slivers at some parameters), then picked.
-        page.run("document.getElementById('canvas').focus();", vec![]).await;
+        page.run("document.getElementById('canvas').focus();", vec![])
+            .await;
         page.key('f', false).await;
-        let at = page.to_screen(point_at(&app, &sample(), wanted).await).await;
+        let at = page
+            .to_screen(point_at(&app, &sample(), wanted).await)
+            .await;
         page.wheel_at(at, -800).await;
         page.settle().await;
         let (t, _) = pick(&page, &app, &sample(), wanted).await;
@@ -135,11 +149,18 @@ async fn every_drawn_region_point_is_reachable_and_only_those_regions_are_drawn(
             }
         }
         // Some regions have no inside at all (their polygon has no area); most do.
-        assert!(sampled >= 1, "t = {t}: no region sampled of {}", regions.len());
+        assert!(
+            sampled >= 1,
+            "t = {t}: no region sampled of {}",
+            regions.len()
+        );
         total_sampled += sampled;
         // What the page left out of the API's regions reaches nothing.
         let (_, all) = app
-            .post_json("/v1/shape/regions", &json!({"curve": sample(), "parameter": t, "side": "both"}))
+            .post_json(
+                "/v1/shape/regions",
+                &json!({"curve": sample(), "parameter": t, "side": "both"}),
+            )
             .await;
         let mut left_out = 0;
         for candidate in all["candidates"].as_array().unwrap() {

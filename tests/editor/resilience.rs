@@ -21,7 +21,10 @@ async fn banner(page: &Page<'_>) -> (bool, String) {
             vec![],
         )
         .await;
-    (value[0].as_bool().unwrap(), value[1].as_str().unwrap().to_owned())
+    (
+        value[0].as_bool().unwrap(),
+        value[1].as_str().unwrap().to_owned(),
+    )
 }
 
 #[tokio::test]
@@ -34,7 +37,8 @@ async fn a_stopped_server_shows_the_banner_and_commits_nothing() {
     assert!(!banner(&page).await.0);
     // One edit, so that there is something to undo.
     let (_, dot) = pick(&page, &app, &original, 0.42).await;
-    page.drag(dot, &[(dot.0 + 5, dot.1 - 6), (dot.0 + 10, dot.1 - 12)]).await;
+    page.drag(dot, &[(dot.0 + 5, dot.1 - 6), (dot.0 + 10, dot.1 - 12)])
+        .await;
     let edited = page.curve().await;
     assert_ne!(numbers(&edited), numbers(&original));
     let drawn = page.run(CURVE_PATH, vec![]).await;
@@ -51,17 +55,27 @@ async fn a_stopped_server_shows_the_banner_and_commits_nothing() {
     app.trigger_shutdown();
     app.stopped().await.unwrap();
     page.move_to((dot.0 + 16, dot.1 + 12)).await;
-    page.wait_until("the banner shows", "document.body.dataset.connection === 'unreachable'")
-        .await;
+    page.wait_until(
+        "the banner shows",
+        "document.body.dataset.connection === 'unreachable'",
+    )
+    .await;
     let (shown, text) = banner(&page).await;
     assert!(shown && text.contains("does not answer"), "{text}");
     page.release().await;
     page.settle().await;
     assert_eq!(numbers(&page.curve().await), numbers(&edited));
-    assert_eq!(page.run(CURVE_PATH, vec![]).await, drawn, "the drawing changed");
     assert_eq!(
-        page.run("return document.querySelectorAll('#scene .layer-preview > *').length;", vec![])
-            .await,
+        page.run(CURVE_PATH, vec![]).await,
+        drawn,
+        "the drawing changed"
+    );
+    assert_eq!(
+        page.run(
+            "return document.querySelectorAll('#scene .layer-preview > *').length;",
+            vec![]
+        )
+        .await,
         json!(0)
     );
     // Undo needs the previous curve's drawing: without the service nothing changes.
@@ -74,12 +88,17 @@ async fn a_stopped_server_shows_the_banner_and_commits_nothing() {
     // A server on the same port again: Retry hides the banner, and the page edits.
     let app = spawn_app_with(|config| config.listen = socket).await;
     page.click_id("retry").await;
-    page.wait_until("the banner hides", "document.body.dataset.connection === 'ok'").await;
+    page.wait_until(
+        "the banner hides",
+        "document.body.dataset.connection === 'ok'",
+    )
+    .await;
     assert!(!banner(&page).await.0);
     page.ctrl_z(false).await;
     assert_eq!(numbers(&page.curve().await), numbers(&original));
     let (_, dot) = pick(&page, &app, &original, 0.42).await;
-    page.drag(dot, &[(dot.0 + 5, dot.1 - 6), (dot.0 + 10, dot.1 - 12)]).await;
+    page.drag(dot, &[(dot.0 + 5, dot.1 - 6), (dot.0 + 10, dot.1 - 12)])
+        .await;
     assert_ne!(numbers(&page.curve().await), numbers(&original));
     // The failed requests are network errors, not script errors.
     assert_eq!(page.script_errors().await, Vec::<String>::new());
@@ -101,20 +120,31 @@ async fn a_503_with_retry_after_is_retried() {
     let slow = app.start_slow_post("/v1/curves/evaluate", &body).await;
     app.wait_for_in_flight(1).await;
     page.click_id("sample").await;
-    page.wait_until("the page says it retries", "document.body.dataset.connection === 'retrying'")
-        .await;
+    page.wait_until(
+        "the page says it retries",
+        "document.body.dataset.connection === 'retrying'",
+    )
+    .await;
     let (shown, text) = banner(&page).await;
-    assert!(shown && text.contains("503") && text.contains("1 s"), "{text}");
+    assert!(
+        shown && text.contains("503") && text.contains("1 s"),
+        "{text}"
+    );
     let finished = slow.finish().await;
     assert_eq!(finished.status, 200);
     page.settle().await;
-    page.wait_until("the banner hides", "document.body.dataset.connection === 'ok'").await;
+    page.wait_until(
+        "the banner hides",
+        "document.body.dataset.connection === 'ok'",
+    )
+    .await;
     assert_eq!(numbers(&page.curve().await), numbers(&sample()));
     assert_eq!(page.data("error").await, "");
     assert_eq!(page.data("message").await, "The sample cubic.");
     let metrics = app.get("/metrics").await.text().await.unwrap();
     assert!(
-        metrics.lines().any(|line| line.contains("status=\"503\"") && line.starts_with("knotshape_http_requests_total")),
+        metrics.lines().any(|line| line.contains("status=\"503\"")
+            && line.starts_with("knotshape_http_requests_total")),
         "no 503 was answered"
     );
     assert_eq!(page.script_errors().await, Vec::<String>::new());

@@ -177,7 +177,10 @@ pub async fn pick(page: &Page<'_>, app: &TestApp, curve: &Value, t: f64) -> (f64
     page.click_at(pixel).await;
     page.settle().await;
     let Some(picked) = page.picked().await else {
-        panic!("no pick after a click on the curve: {}", page.describe().await);
+        panic!(
+            "no pick after a click on the curve: {}",
+            page.describe().await
+        );
     };
     let parameter = picked["parameter"].as_f64().unwrap();
     assert!((parameter - t).abs() < 0.02, "picked {picked} near t = {t}");
@@ -187,7 +190,9 @@ pub async fn pick(page: &Page<'_>, app: &TestApp, curve: &Value, t: f64) -> (f64
 /// The family `{method, side?, region?}` of a solution.
 pub fn family_of(solution: &Value) -> Value {
     match solution["method"].as_str().unwrap() {
-        "knots" => json!({"method": "knots", "side": solution["side"], "region": solution["region"]}),
+        "knots" => {
+            json!({"method": "knots", "side": solution["side"], "region": solution["region"]})
+        }
         method => json!({"method": method}),
     }
 }
