@@ -17,7 +17,7 @@ import { commitCurve, failureMessage } from "./committing.js";
 import { drawingOf } from "./drawing.js";
 import { snap } from "./snapping.js";
 
-/** Drag timings kept, newest last (see `record`). */
+/** Drag timings kept, newest last (see `record`); each drag starts a new list. */
 const KEPT_TIMINGS = 2000;
 
 /**
@@ -40,6 +40,7 @@ export function isDragging() {
 
 function begin(fields) {
   moves.count = 0;
+  timings.length = 0;
   live = { latest: null, answered: null, inFlight: false, releasing: false, failed: false, ...fields };
   document.body.dataset.dragging = "true";
 }

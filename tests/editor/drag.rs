@@ -9,7 +9,7 @@ use super::browser::Browser;
 use super::page::Page;
 use super::steps::{
     BOTH, apply, close, drag_target, numbers, paste, pick, pixel_inside_a_region,
-    pixel_outside_every_region, point_at, sample, smallest_deviation, solve, target_dir,
+    pixel_outside_every_region, point_at, sample, smallest_deviation, solve, screenshot,
     within_pixels,
 };
 use crate::helpers::spawn_app;
@@ -64,11 +64,7 @@ async fn pick_drag_into_a_region_commit_undo_redo_and_drag_outside_onto_nearest(
         "document.body.dataset.busy !== 'true' && document.querySelector('#scene .layer-preview .preview') !== null",
     )
     .await;
-    let png = browser.client.screenshot().await.expect("screenshot");
-    std::fs::create_dir_all(target_dir()).unwrap();
-    let path = target_dir().join("editor-screenshot.png");
-    std::fs::write(&path, png).unwrap();
-    println!("editor screenshot (mid-drag): {}", path.display());
+    screenshot(&browser.client, "editor.png", true).await;
     page.release().await;
     page.settle().await;
     // The page's target is the pointer's displacement added to the picked point.
@@ -203,9 +199,7 @@ async fn a_single_bezier_gets_knots_inserted_and_then_drags() {
         "document.body.dataset.busy !== 'true' && document.querySelector('#scene .layer-preview .preview') !== null",
     )
     .await;
-    let png = browser.client.screenshot().await.expect("screenshot");
-    std::fs::create_dir_all(target_dir()).unwrap();
-    std::fs::write(target_dir().join("editor-screenshot-bezier.png"), png).unwrap();
+    screenshot(&browser.client, "editor-bezier.png", false).await;
     page.release().await;
     page.settle().await;
     let target = same_target(&page, target).await;

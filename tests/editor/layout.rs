@@ -11,7 +11,7 @@ use serde_json::{Value, json};
 use super::browser::Browser;
 use super::page::Page;
 use super::steps::{
-    numbers, paste, pick, pixel_inside_a_region, pixel_outside_every_region, sample, target_dir,
+    numbers, paste, pick, pixel_inside_a_region, pixel_outside_every_region, sample, screenshot,
 };
 use crate::helpers::spawn_app;
 
@@ -57,8 +57,7 @@ async fn at_800_px_the_list_stays_in_view_and_is_numbered_by_solution() {
         inside && count > 1,
         "during the drag: {count} solutions, in view: {inside}"
     );
-    let png = browser.client.screenshot().await.expect("screenshot");
-    std::fs::write(target_dir().join("editor-screenshot-800.png"), png).unwrap();
+    screenshot(&browser.client, "editor-800px.png", true).await;
     page.release().await;
     page.settle().await;
     let (inside, count) = list_in_view(&page).await;

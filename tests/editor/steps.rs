@@ -242,6 +242,19 @@ pub fn many_poles(n: usize) -> Value {
     json!({"degree": 3, "control_points": points, "knots": knots})
 }
 
+/// Saves a screenshot of the page as `target/<name>`; one `for_docs` also as
+/// `docs/pictures/<name>` when `UPDATE_PICTURES` is set (the README's pictures:
+/// `UPDATE_PICTURES=1 cargo test --test editor`).
+pub async fn screenshot(client: &fantoccini::Client, name: &str, for_docs: bool) {
+    let png = client.screenshot().await.expect("screenshot");
+    std::fs::create_dir_all(target_dir()).unwrap();
+    std::fs::write(target_dir().join(name), &png).unwrap();
+    if for_docs && std::env::var_os("UPDATE_PICTURES").is_some() {
+        let docs = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("docs/pictures");
+        std::fs::write(docs.join(name), &png).unwrap();
+    }
+}
+
 pub fn target_dir() -> PathBuf {
     std::env::var_os("CARGO_TARGET_DIR")
         .map(PathBuf::from)

@@ -8,7 +8,7 @@ use serde_json::{Value, json};
 
 use super::browser::Browser;
 use super::page::Page;
-use super::steps::{many_poles, numbers, paste, point_at, sample, target_dir};
+use super::steps::{many_poles, numbers, paste, point_at, sample, screenshot};
 use crate::helpers::spawn_app;
 
 fn scale_of(frame: &Value) -> f64 {
@@ -269,8 +269,7 @@ async fn loading_undo_and_redo_refit_the_view_and_dense_marks_thin_out() {
     assert!(count < 200 && count > 20, "{fit}");
     assert!(gap >= 7.9, "{fit}");
     assert_eq!(fit[2], json!(0), "{fit}");
-    let png = browser.client.screenshot().await.expect("screenshot");
-    std::fs::write(target_dir().join("editor-screenshot-300.png"), png).unwrap();
+    screenshot(&browser.client, "editor-300-poles.png", true).await;
     // Zoomed in 16 times: more marks, still apart, and grips on the control points.
     let [left, top, right, bottom] = canvas_box(&page).await;
     let centre = (((left + right) / 2.0) as i64, ((top + bottom) / 2.0) as i64);
