@@ -35,7 +35,11 @@ async fn pick_drag_into_a_region_commit_undo_redo_and_drag_outside_onto_nearest(
     let original = sample();
     assert_eq!(numbers(&page.curve().await), numbers(&original));
 
-    // Pick: the regions of both sides appear, with the control triangles and a legend.
+    // Zoomed in about the point (the wheel), then picked: the regions of both sides appear,
+    // with the control triangles and a legend.
+    let at = page.to_screen(point_at(&app, &original, 0.42).await).await;
+    page.wheel_at(at, -350).await;
+    page.settle().await;
     let (t, dot) = pick(&page, &app, &original, 0.42).await;
     let drawn = page
         .run(
