@@ -9,7 +9,7 @@ use super::browser::Browser;
 use super::page::Page;
 use super::steps::{
     BOTH, apply, close, drag_target, numbers, paste, pick, pixel_inside_a_region,
-    pixel_outside_every_region, point_at, sample, smallest_deviation, solve, screenshot,
+    pixel_outside_every_region, point_at, sample, screenshot, smallest_deviation, solve,
     within_pixels,
 };
 use crate::helpers::spawn_app;

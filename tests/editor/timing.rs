@@ -15,7 +15,7 @@ use super::page::Page;
 use super::steps::{
     apply, many_poles, numbers, p95, paste, pick, sample, solve_family, target_dir,
 };
-use crate::helpers::spawn_app;
+use crate::helpers::{TestApp, spawn_app};
 
 /// Pointer moves of the measured drag.
 const MOVES: usize = 240;
@@ -28,6 +28,23 @@ struct Timing {
     answered: f64,
     drawn: f64,
     frame: Option<f64>,
+}
+
+/// Seconds the server spent on `route` so far and how many requests: the latency
+/// histogram's sum and count (from receiving a request to sending its response head).
+async fn server_time(app: &TestApp, route: &str) -> (f64, f64) {
+    let text = app.get("/metrics").await.text().await.unwrap();
+    let read = |suffix: &str| {
+        text.lines()
+            .filter(|line| {
+                line.starts_with(&format!(
+                    "knotshape_http_request_duration_seconds_{suffix}{{"
+                )) && line.contains(&format!("route=\"{route}\""))
+            })
+            .filter_map(|line| line.rsplit(' ').next()?.parse::<f64>().ok())
+            .sum::<f64>()
+    };
+    (read("sum"), read("count"))
 }
 
 fn median(values: &[f64]) -> f64 {
@@ -57,8 +74,11 @@ async fn measure(curve: Value, t: f64, label: &str) -> String {
             )
         })
         .collect();
+    let before = server_time(&app, "/v1/shape/solve").await;
     page.drag_paced(dot, &path).await;
     page.settle().await;
+    let after = server_time(&app, "/v1/shape/solve").await;
+    let server_ms = 1000.0 * (after.0 - before.0) / (after.1 - before.1);
     let raw = page
         .run(
             "return window.editorTimings.map((t) => [t.stamp, t.handled, t.sent, t.answered, \
@@ -109,8 +129,8 @@ async fn measure(curve: Value, t: f64, label: &str) -> String {
     let report = format!(
         "{label}: {} previews of {MOVES} moves (median {:.1} ms apart), pointer event to \
          preview in the page: p95 {:.2} ms, median {:.2} ms; to the next frame: p95 {:.2} ms; \
-         p95 of the parts: event to handler {:.2}, waiting {:.2}, request {:.2} (median {:.2}), \
-         drawing {:.2} ms; load average {}\n",
+         p95 of the parts: event to handler {:.2}, waiting {:.2}, request {:.2} (median {:.2}; \
+         the server's own mean {:.2}), drawing {:.2} ms; load average {}\n",
         timings.len(),
         median(&intervals),
         p95(&mut total.clone()),
@@ -120,6 +140,7 @@ async fn measure(curve: Value, t: f64, label: &str) -> String {
         p95(&mut part(&|t| t.sent - t.handled)),
         p95(&mut part(&|t| t.answered - t.sent)),
         median(&part(&|t| t.answered - t.sent)),
+        server_ms,
         p95(&mut part(&|t| t.drawn - t.answered)),
         load.split_whitespace()
             .take(3)
