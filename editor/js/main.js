@@ -31,9 +31,13 @@ const IDS = {
 
 const elements = Object.fromEntries(Object.entries(IDS).map(([name, id]) => [name, document.getElementById(id)]));
 
+/** The knot strip's width, kept by a ResizeObserver: reading it while drawing would make
+ * the browser lay the page out in the middle of every drag move. */
+let stripWidth = 100;
+
 function draw(state) {
   drawScene(state, elements.scene);
-  drawStrip(state, elements.strip, Math.max(elements.strip.clientWidth, 100));
+  drawStrip(state, elements.strip, stripWidth);
   drawPanel(state, elements);
 }
 
@@ -74,6 +78,11 @@ function choose(index) {
 
 function start() {
   buildPanel(elements);
+  stripWidth = Math.max(elements.strip.clientWidth, 100);
+  new ResizeObserver(() => {
+    stripWidth = Math.max(elements.strip.clientWidth, 100);
+    if (store.get()) draw(store.get());
+  }).observe(elements.strip);
   const size = { width: Math.max(elements.canvas.clientWidth, 100), height: Math.max(elements.canvas.clientHeight, 100) };
   elements.canvas.setAttribute("viewBox", `0 0 ${size.width} ${size.height}`);
   const first = structuredClone(SAMPLE_CUBIC);
