@@ -24,7 +24,8 @@ const KEPT_TIMINGS = 2000;
  * Per preview drawn: { kind, stamp: the pointer event's timeStamp, handled: when its handler
  * ran, sent: when its request left, answered: when the answer was parsed, drawn: when the
  * preview was in the page, frame: the next animation frame after that } (performance.now()
- * milliseconds; `frame` filled in later), and the kept family (JSON) of a point drag.
+ * milliseconds; `frame` filled in later), the kept family (JSON) of a point drag, and
+ * where the preview put the dragged point.
  */
 export const timings = [];
 
@@ -120,6 +121,7 @@ async function work(drag) {
 function record(timing, drag) {
   timing.drawn = performance.now();
   timing.family = drag.family ? JSON.stringify(drag.family) : null;
+  timing.point = drag.kind === "point" ? drag.solution.point : drag.point;
   timings.push(timing);
   if (timings.length > KEPT_TIMINGS) timings.shift();
   requestAnimationFrame(() => {

@@ -113,8 +113,8 @@ export function hasUsableRegion(curve, regionsAnswer) {
   return reachableRegions(curve, regionsAnswer).candidates.some((candidate) => candidate.regions.length > 0);
 }
 
-/** Poles a local piece keeps on each side beyond those a knot-pair move can change. */
-const PIECE_MARGIN = 12;
+/** Poles a local piece keeps on each side beyond those a move can change. */
+const PIECE_MARGIN = 2;
 
 /**
  * The piece of `curve` made of control points `first..last` and their knots (full
@@ -144,15 +144,20 @@ export function spanIndex(curve, t) {
   return k;
 }
 
-/** The local piece a drag at parameter `t` changes: every pole that a knot-pair or
- * control-point move there can touch, with a margin so that the piece's own domain ends
- * never move (or are the curve's). The whole curve when the curve is small or its knots are
- * in a form the page does not cut. */
+/**
+ * The local piece a drag at parameter `t` in span k changes. A knot pair there moves knots
+ * among u_k−2 … u_k+3 (a cubic), which changes poles k−6 … k+3 and the curve on
+ * [u_k−3, u_k+4]; a control-point move changes poles k−p … k. The piece keeps poles
+ * k−2p−2 … k+p+3 (a margin of PIECE_MARGIN beyond that), so its own domain ends never move
+ * (or are the curve's), and solving it gives the same solutions as solving the whole curve.
+ * The whole curve when the curve is small or its knots are in a form the page does not cut.
+ */
 export function pieceAtParameter(curve, t) {
   if (!hasPlainKnots(curve)) return { curve, poleOffset: 0, whole: true };
   const k = spanIndex(curve, t);
   const n = curve.control_points.length;
-  return localPiece(curve, Math.max(0, k - curve.degree - PIECE_MARGIN), Math.min(n - 1, k + PIECE_MARGIN));
+  const p = curve.degree;
+  return localPiece(curve, Math.max(0, k - 2 * p - PIECE_MARGIN), Math.min(n - 1, k + 1 + p + PIECE_MARGIN));
 }
 
 /** The local piece that moving pole `index` changes: the curve on [u_index, u_index+p+1]. */

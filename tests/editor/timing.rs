@@ -114,6 +114,16 @@ async fn measure(curve: Value, t: f64, label: &str) -> String {
         &solve_family(&app, &curve, t, target, &family).await,
     );
     assert_eq!(numbers(&page.curve().await), numbers(&expected), "{label}");
+    // What the last preview showed (solved on the local piece) is what was committed (solved
+    // on the whole curve).
+    let shown = page
+        .run(
+            "return window.editorTimings[window.editorTimings.length - 1].point;",
+            vec![],
+        )
+        .await;
+    let committed = page.picked().await.unwrap()["point"].clone();
+    assert_eq!(shown, committed, "{label}");
 
     let part = |f: &dyn Fn(&Timing) -> f64| timings.iter().map(f).collect::<Vec<f64>>();
     let total = part(&|t| t.drawn - t.stamp);
