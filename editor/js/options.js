@@ -10,8 +10,8 @@ export const TOOLS = [
 
 /** The solver's methods the page can ask for (`id` is the API's name). */
 export const METHODS = [
-  { id: "knots", label: "knots (Ω1–Ω6)", cubicOnly: true },
-  { id: "control_points", label: "control points", cubicOnly: false },
+  { id: "knots", label: "knots (Ω1–Ω6)" },
+  { id: "control_points", label: "control points" },
 ];
 
 /** Layers of the drawing that can be hidden; `shown` is the default. */
