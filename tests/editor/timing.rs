@@ -3,7 +3,8 @@
 //! point, on the sample cubic and on a 300-pole curve. For every preview drawn the page keeps
 //! the pointer event's timestamp and when the preview was in the page (and the next animation
 //! frame); the test prints the 95th percentile and median, split into the parts (event to
-//! handler, waiting for the request before, the request, drawing), and writes them to
+//! handler, waiting for the request before, the request, drawing) and beside the floor (a
+//! bare request's round trip from the page under the same load), and writes them to
 //! `target/editor-drag-timings.txt`. A measurement, not a pass/fail timing: it checks that the
 //! drag ran (every move seen, previews drawn) and committed the kept family's solution. Run it
 //! alone for numbers: `cargo test --test editor drag_to_redraw -- --nocapture`.
@@ -125,6 +126,22 @@ async fn measure(curve: Value, t: f64, label: &str) -> String {
     let committed = page.picked().await.unwrap()["point"].clone();
     assert_eq!(shown, committed, "{label}");
 
+    // The floor under the same load: a bare request from the page (GET /healthz, no work on
+    // the server), one every 16 ms, timed from fetch to its body.
+    let bare = browser
+        .client
+        .execute_async(
+            "const done = arguments[arguments.length - 1]; (async () => { const times = []; \
+             for (let i = 0; i < 120; i++) { const start = performance.now(); \
+             const answer = await fetch('/healthz', { cache: 'no-store' }); await answer.text(); \
+             times.push(performance.now() - start); await new Promise((r) => setTimeout(r, 16)); } \
+             done(times); })();",
+            vec![],
+        )
+        .await
+        .expect("bare requests");
+    let bare: Vec<f64> = serde_json::from_value(bare).unwrap();
+
     let part = |f: &dyn Fn(&Timing) -> f64| timings.iter().map(f).collect::<Vec<f64>>();
     let total = part(&|t| t.drawn - t.stamp);
     let framed: Vec<f64> = timings
@@ -140,7 +157,8 @@ async fn measure(curve: Value, t: f64, label: &str) -> String {
         "{label}: {} previews of {MOVES} moves (median {:.1} ms apart), pointer event to \
          preview in the page: p95 {:.2} ms, median {:.2} ms; to the next frame: p95 {:.2} ms; \
          p95 of the parts: event to handler {:.2}, waiting {:.2}, request {:.2} (median {:.2}; \
-         the server's own mean {:.2}), drawing {:.2} ms; load average {}\n",
+         the server's own mean {:.2}), drawing {:.2} ms; a bare request from the page: p95 \
+         {:.2} ms, median {:.2} ms; load average {}\n",
         timings.len(),
         median(&intervals),
         p95(&mut total.clone()),
@@ -152,6 +170,8 @@ async fn measure(curve: Value, t: f64, label: &str) -> String {
         median(&part(&|t| t.answered - t.sent)),
         server_ms,
         p95(&mut part(&|t| t.drawn - t.answered)),
+        p95(&mut bare.clone()),
+        median(&bare),
         load.split_whitespace()
             .take(3)
             .collect::<Vec<_>>()
