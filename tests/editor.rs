@@ -13,8 +13,15 @@ mod editor {
     pub mod api_key;
     pub mod browser;
     pub mod drag;
+    pub mod gestures;
+    pub mod layout;
     pub mod page;
     pub mod picture;
+    pub mod precision;
+    pub mod regions;
+    pub mod resilience;
     pub mod static_files;
     pub mod steps;
+    pub mod timing;
+    pub mod view;
 }

@@ -1,8 +1,24 @@
 // The API client: one function per endpoint the editor uses. Each resolves to
 // { ok: true, value } with the parsed answer, or { ok: false, problem } with a problem
-// document (RFC 9457) — also for network failures — and never throws.
+// document (RFC 9457) — also for network failures — and never throws. A 503 with
+// Retry-After is retried after the time it names (a few times, each wait capped); what the
+// connection does (unreachable, busy and retrying, answering again) is reported to the
+// listener that `onConnection` sets, so the page can show it.
 
 const API_KEY_STORAGE = "knotshape.apiKey";
+/** Attempts of one request when the service answers 503 with Retry-After. */
+const ATTEMPTS = 4;
+/** The longest wait before a retry, in seconds, whatever Retry-After says. */
+const LONGEST_WAIT_SECONDS = 5;
+/** The problem `type` of a request that never got an answer. */
+export const NETWORK_ERROR = "about:network-error";
+
+let connectionListener = () => {};
+
+/** Sets the function told `{ state: "ok" | "unreachable" | "retrying", seconds?, path }`. */
+export function onConnection(listener) {
+  connectionListener = listener;
+}
 
 /** The API key kept for this tab (sessionStorage), or "". */
 export function apiKey() {
@@ -26,18 +42,43 @@ export function setApiKey(key) {
   }
 }
 
+const sleep = (seconds) => new Promise((resolve) => setTimeout(resolve, seconds * 1000));
+
+/** Seconds a 503 asks to wait (Retry-After as seconds or an HTTP date), or null. */
+function retryAfter(response) {
+  const value = response.headers.get("Retry-After");
+  if (response.status !== 503 || value === null) return null;
+  const seconds = /^\d+$/.test(value.trim()) ? Number(value) : (Date.parse(value) - Date.now()) / 1000;
+  return Number.isFinite(seconds) ? Math.min(Math.max(seconds, 0), LONGEST_WAIT_SECONDS) : null;
+}
+
 async function post(path, body) {
   const headers = { "Content-Type": "application/json", Accept: "application/json" };
   const key = apiKey();
   if (key) {
     headers.Authorization = `Bearer ${key}`;
   }
-  let response;
-  try {
-    response = await fetch(path, { method: "POST", headers, body: JSON.stringify(body) });
-  } catch (error) {
-    return failure({ title: "Network error", detail: `${path}: ${error.message}` });
+  const text = JSON.stringify(body);
+  for (let attempt = 1; ; attempt += 1) {
+    let response;
+    try {
+      response = await fetch(path, { method: "POST", headers, body: text });
+    } catch (error) {
+      connectionListener({ state: "unreachable", path });
+      return failure({ type: NETWORK_ERROR, title: "The service does not answer", detail: `${path}: ${error.message}` });
+    }
+    const wait = retryAfter(response);
+    if (wait !== null && attempt < ATTEMPTS) {
+      connectionListener({ state: "retrying", seconds: wait, path });
+      await sleep(wait);
+      continue;
+    }
+    connectionListener({ state: "ok", path });
+    return answer(path, response);
   }
+}
+
+async function answer(path, response) {
   let parsed = null;
   try {
     parsed = await response.json();
@@ -57,13 +98,14 @@ function failure(problem) {
   return { ok: false, problem };
 }
 
-/** A problem as one readable line: title, detail and each field error's pointer. */
-export function describeProblem(problem) {
-  const parts = [problem.title, problem.detail].filter(Boolean);
-  for (const error of problem.errors || []) {
-    parts.push(`${error.pointer || "(body)"}: ${error.detail}`);
+/** Whether the service answers `GET /healthz` (no key needed). */
+export async function healthy() {
+  try {
+    const response = await fetch("/healthz", { cache: "no-store" });
+    return response.ok;
+  } catch {
+    return false;
   }
-  return parts.join(" — ");
 }
 
 /** POST /v1/curves/evaluate at given parameters. */
@@ -91,13 +133,28 @@ export function insertKnotsForEditing(curve, parameter) {
   return post("/v1/curves/insert-knots", { curve, editable_at: { parameter } });
 }
 
-/** POST /v1/shape/regions: the regions' polygons of both sides at `parameter`. */
-export function regions(curve, parameter) {
-  return post("/v1/shape/regions", { curve, parameter, side: "both" });
+/** POST /v1/shape/regions: the regions' polygons of both sides at `parameter`, for the same
+ * `keep_domain` as solving (the default, sent explicitly), within `tolerance` of the true
+ * boundaries. */
+export function regions(curve, parameter, tolerance) {
+  return post("/v1/shape/regions", { curve, parameter, side: "both", keep_domain: true, tolerance });
 }
 
-/** POST /v1/shape/solve with `nearest`, the given methods and each solution's SVG path (so a
- * drag's preview needs no second request). */
-export function solve(curve, parameter, target, methods) {
-  return post("/v1/shape/solve", { curve, parameter, target, side: "both", nearest: true, methods, svg_paths: true });
+/**
+ * POST /v1/shape/solve with `nearest`. `family` (optional) narrows the request to one way of
+ * moving the point — `{ method, side, region }` — so the answer holds just that family's
+ * solution; `svgPaths` asks for each solution's new curve as an SVG path (so a drag's
+ * preview needs no second request).
+ */
+export function solve(curve, parameter, target, { methods, family = null, svgPaths = false }) {
+  const body = { curve, parameter, target, side: "both", nearest: true, methods };
+  if (family) {
+    body.methods = [family.method];
+    if (family.method === "knots") {
+      body.side = family.side;
+      body.regions = [family.region];
+    }
+  }
+  if (svgPaths) body.svg_paths = true;
+  return post("/v1/shape/solve", body);
 }

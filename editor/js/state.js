@@ -1,17 +1,26 @@
 // The editor's state as plain data, and the pure functions that make a new state from an
-// old one. Nothing here draws or requests; main.js and interaction.js call these and then
-// draw the result (event → new state → draw).
+// old one. Nothing here draws or requests; the controller calls these and then draws the
+// result (event → new state → draw).
 
-/** A fresh state editing `curve`. */
-export function initialState(curve) {
+import { LAYERS, METHODS, SNAPS } from "./options.js";
+
+/** A fresh state editing `curve`, drawn in `frame` on a drawing of `size`. */
+export function initialState(curve, frame, size) {
   return {
     history: { past: [], present: curve, future: [] },
+    view: { frame, size },
     drawing: null, // { path | polyline, knotPoints } of the committed curve
-    pick: null, // { parameter, point }
-    regions: null, // the /v1/shape/regions answer at the pick
-    drag: null, // { target, solutions, nearest, chosen, preview, previewDrawing }
+    pick: null, // { parameter, point, base }: base is the curve edits start from
+    regions: null, // the /v1/shape/regions answer at the pick, only what solving reaches
+    drag: null, // see dragging.js
     lastSolutions: null, // after a release: { solutions, chosen, base, target } to re-choose
-    methods: ["knots", "control_points"],
+    family: null, // the way of moving the point that drags and nudges keep (geometry.familyOf)
+    methods: METHODS.map((method) => method.id),
+    layers: Object.fromEntries(LAYERS.map((layer) => [layer.id, layer.shown])),
+    snap: Object.fromEntries(SNAPS.map((kind) => [kind.id, false])),
+    tool: "edit",
+    pointer: null, // the curve point under the pointer, for the readout
+    connection: { state: "ok" }, // "ok" | "unreachable" | "retrying" (+ seconds)
     message: "",
     error: "",
   };
@@ -22,13 +31,18 @@ export function currentCurve(state) {
   return state.history.present;
 }
 
+/** The curve edits of the pick start from (the committed one, or it with knots inserted). */
+export function editBase(state) {
+  return state.pick?.base ?? state.history.present;
+}
+
 /** `curve` committed on top of the history (redo cleared). */
 export function commit(state, curve) {
   const { past, present } = state.history;
   return { ...state, history: { past: [...past, present], present: curve, future: [] } };
 }
 
-/** The last commit replaced by `curve` (another solution of the same drag). */
+/** The last commit replaced by `curve` (another solution of the same drag, another nudge). */
 export function replaceCommit(state, curve) {
   return { ...state, history: { ...state.history, present: curve } };
 }
@@ -59,12 +73,17 @@ export function redo(state) {
 
 /** A new curve to edit (history kept: loading is undoable). */
 export function load(state, curve) {
-  return { ...cleared(commit(state, curve)), message: "", error: "" };
+  return { ...cleared(commit(state, curve)), family: null };
 }
 
 /** The state without pick, regions, drag and re-choosable solutions. */
 export function cleared(state) {
   return { ...state, pick: null, regions: null, drag: null, lastSolutions: null, drawing: null };
+}
+
+/** The state with `message` (info) or `error` shown, and nothing older. */
+export function told(state, { message = "", error = "" }) {
+  return { ...state, message: error ? "" : message, error };
 }
 
 /** Index of the solution with the smallest max deviation (the default choice). */
@@ -76,4 +95,9 @@ export function defaultChoice(solutions) {
     }
   });
   return best;
+}
+
+/** The frame of the state with `frame` in place. */
+export function withFrame(state, frame) {
+  return { ...state, view: { ...state.view, frame } };
 }

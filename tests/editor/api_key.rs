@@ -20,7 +20,7 @@ async fn the_page_sends_the_key_typed_into_its_field() {
         error.contains("Unauthorized"),
         "error without the key: {error}"
     );
-    let curves = "return document.querySelectorAll('#scene .layer-curve > *').length;";
+    let curves = "return document.querySelectorAll('#scene .layer-curve > .curve').length;";
     assert_eq!(page.run(curves, vec![]).await, json!(0));
 
     let field = browser.client.find(Locator::Id("api-key")).await.unwrap();
@@ -38,7 +38,7 @@ async fn the_page_sends_the_key_typed_into_its_field() {
     // The curve is drawn from the API's answer, across the canvas.
     let bounds = page
         .run(
-            "const r = document.querySelector('#scene .layer-curve > *').getBoundingClientRect(); \
+            "const r = document.querySelector('#scene .layer-curve > .curve').getBoundingClientRect(); \
              return [r.width, r.height];",
             vec![],
         )

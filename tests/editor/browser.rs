@@ -1,8 +1,9 @@
 //! A headless Chromium session for one test: chromedriver started on a free port, Chromium
-//! with a fresh profile directory, both ended (and the profile removed) on drop.
+//! with a fresh profile directory, both ended (and the profile removed) on drop — also when
+//! the test panicked and never closed the session.
 
 use std::net::TcpListener;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 
@@ -103,7 +104,52 @@ impl Drop for Browser {
     fn drop(&mut self) {
         let _ = self.driver.kill();
         let _ = self.driver.wait();
+        end_browser(&self.profile);
         let _ = std::fs::remove_dir_all(&self.profile);
+    }
+}
+
+/// Ends the processes of the Chromium that uses `profile` (a directory unique to one
+/// session, named in their arguments): when a test panics its session is never closed, and
+/// ending chromedriver alone leaves that Chromium running.
+fn end_browser(profile: &Path) {
+    let directory = profile.display().to_string();
+    let Ok(entries) = std::fs::read_dir("/proc") else {
+        return;
+    };
+    let mut ended = Vec::new();
+    for entry in entries.flatten() {
+        let Some(pid) = entry
+            .file_name()
+            .to_str()
+            .and_then(|name| name.parse::<u32>().ok())
+        else {
+            continue;
+        };
+        let Ok(arguments) = std::fs::read(entry.path().join("cmdline")) else {
+            continue;
+        };
+        // Chromium's processes name the profile (`--user-data-dir=…`), its crash handler a
+        // directory inside it.
+        if arguments.split(|&byte| byte == 0).any(|argument| {
+            let argument = String::from_utf8_lossy(argument);
+            argument.ends_with(&directory) || argument.contains(&format!("{directory}/"))
+        }) {
+            let _ = Command::new("kill").arg(pid.to_string()).status();
+            ended.push(pid);
+        }
+    }
+    // Gone (or a zombie) before the profile is removed; bounded: two seconds.
+    let running = |pid: &u32| {
+        std::fs::read_to_string(format!("/proc/{pid}/stat")).is_ok_and(|stat| {
+            stat.rsplit(") ")
+                .next()
+                .is_some_and(|rest| !rest.starts_with('Z'))
+        })
+    };
+    let deadline = Instant::now() + Duration::from_secs(2);
+    while Instant::now() < deadline && ended.iter().any(running) {
+        std::thread::sleep(Duration::from_millis(20));
     }
 }
 

@@ -6,6 +6,7 @@ use std::time::{Duration, Instant};
 
 use fantoccini::actions::{
     InputSource, KeyAction, KeyActions, MOUSE_BUTTON_LEFT, MouseActions, PointerAction,
+    TouchActions, WheelAction, WheelActions,
 };
 use fantoccini::key::Key;
 use fantoccini::{Client, Locator};
@@ -214,6 +215,128 @@ impl<'a> Page<'a> {
         keys = keys.then(KeyAction::Up { value: control });
         self.client.perform_actions(keys).await.expect("keys");
         self.settle().await;
+    }
+
+    /// Presses and releases `key` (a character, or a `Key` turned into one), with Shift
+    /// held when `shift`.
+    pub async fn key(&self, key: char, shift: bool) {
+        let shift_key: char = Key::Shift.into();
+        let mut keys = KeyActions::new("keyboard".to_owned());
+        if shift {
+            keys = keys.then(KeyAction::Down { value: shift_key });
+        }
+        keys = keys
+            .then(KeyAction::Down { value: key })
+            .then(KeyAction::Up { value: key });
+        if shift {
+            keys = keys.then(KeyAction::Up { value: shift_key });
+        }
+        self.client.perform_actions(keys).await.expect("key");
+    }
+
+    /// Holds `key` down (until [`Page::key_up`]).
+    pub async fn key_down(&self, key: char) {
+        let keys = KeyActions::new("keyboard".to_owned()).then(KeyAction::Down { value: key });
+        self.client.perform_actions(keys).await.expect("key down");
+    }
+
+    /// Lets `key` go.
+    pub async fn key_up(&self, key: char) {
+        let keys = KeyActions::new("keyboard".to_owned()).then(KeyAction::Up { value: key });
+        self.client.perform_actions(keys).await.expect("key up");
+    }
+
+    /// A wheel turn of `delta_y` pixels (negative: away from the user, zoom in) over `pixel`.
+    pub async fn wheel_at(&self, pixel: (i64, i64), delta_y: i64) {
+        let wheel = WheelActions::new("wheel".to_owned()).then(WheelAction::Scroll {
+            duration: Some(Duration::from_millis(0)),
+            x: pixel.0,
+            y: pixel.1,
+            delta_x: 0,
+            delta_y,
+        });
+        self.client.perform_actions(wheel).await.expect("wheel");
+    }
+
+    /// Two fingers down at `a` and `b`, moved apart to `a_to` and `b_to` in `steps` steps,
+    /// and lifted.
+    pub async fn pinch(
+        &self,
+        (a, b): ((i64, i64), (i64, i64)),
+        (a_to, b_to): ((i64, i64), (i64, i64)),
+        steps: i64,
+    ) {
+        let finger = |name: &str, from: (i64, i64), to: (i64, i64)| {
+            let mut touch =
+                TouchActions::new(name.to_owned())
+                    .then(move_to(from))
+                    .then(PointerAction::Down {
+                        button: MOUSE_BUTTON_LEFT,
+                    });
+            for step in 1..=steps {
+                let at = (
+                    from.0 + (to.0 - from.0) * step / steps,
+                    from.1 + (to.1 - from.1) * step / steps,
+                );
+                touch = touch.then(move_to(at));
+            }
+            touch.then(PointerAction::Up {
+                button: MOUSE_BUTTON_LEFT,
+            })
+        };
+        let actions = fantoccini::actions::Actions::from(vec![
+            fantoccini::actions::ActionSequence::from(finger("finger1", a, a_to)),
+            fantoccini::actions::ActionSequence::from(finger("finger2", b, b_to)),
+        ]);
+        self.client.perform_actions(actions).await.expect("pinch");
+    }
+
+    /// Down at `from`, then every pixel of `path` as its own pointer move (chromedriver sends
+    /// each once the page has taken the one before, once a frame: 60 Hz), then up.
+    pub async fn drag_paced(&self, from: (i64, i64), path: &[(i64, i64)]) {
+        let mut mouse = MouseActions::new("mouse".to_owned())
+            .then(move_to(from))
+            .then(PointerAction::Down {
+                button: MOUSE_BUTTON_LEFT,
+            });
+        for &pixel in path {
+            mouse = mouse.then(move_to(pixel));
+        }
+        mouse = mouse.then(PointerAction::Up {
+            button: MOUSE_BUTTON_LEFT,
+        });
+        self.client
+            .perform_actions(mouse)
+            .await
+            .expect("paced drag");
+    }
+
+    /// The computed CSS `property` of the topmost element at viewport `pixel`.
+    pub async fn style_at(&self, pixel: (i64, i64), property: &str) -> String {
+        let value = self
+            .run(
+                "const e = document.elementFromPoint(arguments[0], arguments[1]); \
+                 return e ? getComputedStyle(e).getPropertyValue(arguments[2]) : '';",
+                vec![json!(pixel.0), json!(pixel.1), json!(property)],
+            )
+            .await;
+        value.as_str().unwrap_or_default().to_owned()
+    }
+
+    /// The target of the drag in progress, or of the last edit (`body[data-target]`).
+    pub async fn target(&self) -> [f64; 2] {
+        let value: Value = serde_json::from_str(&self.data("target").await).expect("a target");
+        [value[0].as_f64().unwrap(), value[1].as_f64().unwrap()]
+    }
+
+    /// The view's frame `{scale, offset, fitted}` (`body[data-frame]`).
+    pub async fn frame(&self) -> Value {
+        serde_json::from_str(&self.data("frame").await).expect("data-frame is JSON")
+    }
+
+    /// The curve being edited (the committed one, or it with knots inserted for the pick).
+    pub async fn edited(&self) -> Value {
+        serde_json::from_str(&self.data("base").await).expect("data-base is JSON")
     }
 
     /// Clicks the element with `id`.

@@ -1,24 +1,48 @@
-//! `GET /` and `GET /editor/...`: the page's files with their content types, the strict
-//! Content-Security-Policy, `nosniff`, revalidation by `ETag`; no API key needed.
+//! `GET /` and `GET /editor/...`: the page and every file it refers to (found by following
+//! its `src`/`href` attributes and the modules' `import` lines) are served with their content
+//! types, the strict Content-Security-Policy, `nosniff`, and revalidation by `ETag`; no API
+//! key needed. `/favicon.ico` is served too.
+
+use std::collections::BTreeSet;
 
 use crate::helpers::spawn_app_with;
 
-const FILES: [(&str, &str); 11] = [
-    ("/editor/", "text/html; charset=utf-8"),
-    ("/editor/editor.css", "text/css; charset=utf-8"),
-    ("/editor/js/errors.js", "text/javascript; charset=utf-8"),
-    ("/editor/js/main.js", "text/javascript; charset=utf-8"),
-    ("/editor/js/api.js", "text/javascript; charset=utf-8"),
-    ("/editor/js/state.js", "text/javascript; charset=utf-8"),
-    ("/editor/js/view.js", "text/javascript; charset=utf-8"),
-    (
-        "/editor/js/interaction.js",
-        "text/javascript; charset=utf-8",
-    ),
-    ("/editor/js/geometry.js", "text/javascript; charset=utf-8"),
-    ("/editor/js/sample.js", "text/javascript; charset=utf-8"),
-    ("/editor/js/drawing.js", "text/javascript; charset=utf-8"),
-];
+/// The content type a file's name calls for.
+fn content_type(path: &str) -> &'static str {
+    if path.ends_with('/') || path.ends_with(".html") {
+        "text/html; charset=utf-8"
+    } else if path.ends_with(".css") {
+        "text/css; charset=utf-8"
+    } else if path.ends_with(".js") {
+        "text/javascript; charset=utf-8"
+    } else if path.ends_with(".svg") || path.ends_with(".ico") {
+        "image/svg+xml"
+    } else {
+        panic!("unexpected file {path}")
+    }
+}
+
+/// The site paths `body` (served at `path`) refers to.
+fn references(path: &str, body: &str) -> Vec<String> {
+    let directory = &path[..=path.rfind('/').unwrap()];
+    let mut found = Vec::new();
+    for attribute in ["src=\"", "href=\""] {
+        for piece in body.split(attribute).skip(1) {
+            let target = piece.split('"').next().unwrap();
+            if target.starts_with('/') {
+                found.push(target.to_owned());
+            }
+        }
+    }
+    for line in body.lines() {
+        if let Some(import) = line.strip_prefix("import ") {
+            let module = import.split('"').nth(1).unwrap();
+            let module = module.strip_prefix("./").expect("relative imports");
+            found.push(format!("{directory}{module}"));
+        }
+    }
+    found
+}
 
 #[tokio::test]
 async fn the_files_are_served_with_strict_headers_even_with_an_api_key() {
@@ -32,11 +56,17 @@ async fn the_files_are_served_with_strict_headers_even_with_an_api_key() {
     // reqwest follows the redirect to the page.
     assert_eq!(root.status().as_u16(), 200);
     assert_eq!(root.url().path(), "/editor/");
-    for (path, content_type) in FILES {
-        let response = app.get(path).await;
+
+    let mut pending = vec!["/editor/".to_owned(), "/favicon.ico".to_owned()];
+    let mut seen = BTreeSet::new();
+    while let Some(path) = pending.pop() {
+        if !seen.insert(path.clone()) {
+            continue;
+        }
+        let response = app.get(&path).await;
         assert_eq!(response.status().as_u16(), 200, "{path}");
         let headers = response.headers().clone();
-        assert_eq!(headers["content-type"], content_type, "{path}");
+        assert_eq!(headers["content-type"], content_type(&path), "{path}");
         assert_eq!(headers["x-content-type-options"], "nosniff", "{path}");
         let policy = headers["content-security-policy"].to_str().unwrap();
         assert!(policy.starts_with("default-src 'self';"), "{policy}");
@@ -47,16 +77,8 @@ async fn the_files_are_served_with_strict_headers_even_with_an_api_key() {
         assert_eq!(headers["cache-control"], "no-cache", "{path}");
         let tag = headers["etag"].to_str().unwrap().to_owned();
         let body = response.text().await.unwrap();
-        assert!(!body.is_empty());
-        // Every module the page imports is served.
-        for import in body.lines().filter_map(|line| line.strip_prefix("import ")) {
-            let module = import.split('"').nth(1).unwrap();
-            let module = module.trim_start_matches("./");
-            assert!(
-                FILES.iter().any(|(p, _)| p.ends_with(module)),
-                "{path} imports {module}, not served"
-            );
-        }
+        assert!(!body.is_empty(), "{path}");
+        pending.extend(references(&path, &body));
         let again = app
             .client
             .get(format!("{}{path}", app.address))
@@ -66,6 +88,9 @@ async fn the_files_are_served_with_strict_headers_even_with_an_api_key() {
             .unwrap();
         assert_eq!(again.status().as_u16(), 304, "{path}");
     }
+    // The page, its style, its icon and its modules.
+    assert!(seen.len() > 20, "{seen:?}");
+    assert!(seen.contains("/editor/js/main.js") && seen.contains("/editor/favicon.svg"));
     assert_eq!(
         app.get("/editor/js/missing.js").await.status().as_u16(),
         404

@@ -97,6 +97,11 @@ pub fn close(a: [f64; 2], b: [f64; 2]) -> bool {
     (a[0] - b[0]).hypot(a[1] - b[1]) <= 1e-9 * scale
 }
 
+/// Whether `a` and `b` are within `pixels` of each other at `scale` pixels per unit.
+pub fn within_pixels(a: [f64; 2], b: [f64; 2], scale: f64, pixels: f64) -> bool {
+    (a[0] - b[0]).hypot(a[1] - b[1]) * scale <= pixels
+}
+
 /// Pixels around `centre`, nearest first (rings of 8 px, 16 directions).
 pub fn around(centre: (i64, i64), rings: std::ops::RangeInclusive<i64>) -> Vec<(i64, i64)> {
     let mut pixels = Vec::new();
@@ -113,44 +118,56 @@ pub fn around(centre: (i64, i64), rings: std::ops::RangeInclusive<i64>) -> Vec<(
     pixels
 }
 
-/// A pixel near `picked` whose curve point a knot pair reaches (inside a region).
+/// The target of a drag from the dot at pixel `dot` to pixel `pixel`, as the page computes
+/// it: the picked point moved by the pointer's displacement in curve coordinates.
+pub async fn drag_target(page: &Page<'_>, dot: (i64, i64), pixel: (i64, i64)) -> [f64; 2] {
+    let picked = page.picked().await.expect("a picked point");
+    let point = [
+        picked["point"][0].as_f64().unwrap(),
+        picked["point"][1].as_f64().unwrap(),
+    ];
+    let (from, to) = (page.to_curve(dot).await, page.to_curve(pixel).await);
+    [point[0] + to[0] - from[0], point[1] + to[1] - from[1]]
+}
+
+/// A pixel near the dot at `dot` whose drag target a knot pair reaches (inside a region).
 pub async fn pixel_inside_a_region(
     page: &Page<'_>,
     app: &TestApp,
     curve: &Value,
     t: f64,
-    picked: (i64, i64),
+    dot: (i64, i64),
 ) -> (i64, i64) {
-    for pixel in around(picked, 2..=8) {
-        let target = page.to_curve(pixel).await;
+    for pixel in around(dot, 2..=8) {
+        let target = drag_target(page, dot, pixel).await;
         let answer = solve(app, curve, t, target, &["knots"]).await;
         if answer["reachable"] == json!(true) {
             return pixel;
         }
     }
-    panic!("no pixel near {picked:?} lies inside a region");
+    panic!("no pixel near {dot:?} lies inside a region");
 }
 
-/// A pixel whose curve point no knot pair reaches, with a nearest reachable point.
+/// A pixel whose drag target no knot pair reaches, with a nearest reachable point.
 pub async fn pixel_outside_every_region(
     page: &Page<'_>,
     app: &TestApp,
     curve: &Value,
     t: f64,
-    picked: (i64, i64),
+    dot: (i64, i64),
 ) -> (i64, i64) {
-    for pixel in around(picked, 10..=24) {
+    for pixel in around(dot, 10..=24) {
         let (x, y) = pixel;
         if !(20..700).contains(&x) || !(100..560).contains(&y) {
             continue;
         }
-        let target = page.to_curve(pixel).await;
+        let target = drag_target(page, dot, pixel).await;
         let answer = solve(app, curve, t, target, &["knots"]).await;
         if answer["reachable"] == json!(false) && answer["nearest"].is_object() {
             return pixel;
         }
     }
-    panic!("no pixel near {picked:?} lies outside every region");
+    panic!("no pixel near {dot:?} lies outside every region");
 }
 
 /// Clicks the curve point at `t` and waits for the pick; returns the picked parameter and
@@ -159,13 +176,83 @@ pub async fn pick(page: &Page<'_>, app: &TestApp, curve: &Value, t: f64) -> (f64
     let pixel = page.to_screen(point_at(app, curve, t).await).await;
     page.click_at(pixel).await;
     page.settle().await;
-    let picked = page
-        .picked()
-        .await
-        .unwrap_or_else(|| panic!("no pick after a click on the curve"));
+    let Some(picked) = page.picked().await else {
+        panic!(
+            "no pick after a click on the curve: {}",
+            page.describe().await
+        );
+    };
     let parameter = picked["parameter"].as_f64().unwrap();
     assert!((parameter - t).abs() < 0.02, "picked {picked} near t = {t}");
     (parameter, pixel)
+}
+
+/// The family `{method, side?, region?}` of a solution.
+pub fn family_of(solution: &Value) -> Value {
+    match solution["method"].as_str().unwrap() {
+        "knots" => {
+            json!({"method": "knots", "side": solution["side"], "region": solution["region"]})
+        }
+        method => json!({"method": method}),
+    }
+}
+
+/// The API's solution of `family` for the target (or the nearest reachable point of that
+/// family), asked as the page asks once a drag keeps a family.
+pub async fn solve_family(
+    app: &TestApp,
+    curve: &Value,
+    t: f64,
+    target: [f64; 2],
+    family: &Value,
+) -> Value {
+    let mut request = json!({"curve": curve, "parameter": t, "target": target, "side": "both",
+                             "nearest": true, "methods": [family["method"]]});
+    if family["method"] == "knots" {
+        request["side"] = family["side"].clone();
+        request["regions"] = json!([family["region"]]);
+    }
+    let (status, body) = app.post_json("/v1/shape/solve", &request).await;
+    assert_eq!(status, 200, "{body}");
+    let solutions = body["solutions"].as_array().unwrap();
+    let solutions = if solutions.is_empty() {
+        body["nearest"]["solutions"].as_array().unwrap()
+    } else {
+        solutions
+    };
+    solutions
+        .iter()
+        .find(|s| family_of(s) == *family)
+        .cloned()
+        .unwrap_or_else(|| panic!("no solution of {family}: {body}"))
+}
+
+/// A cubic with `n` control points along a wave, uniform knots (a large curve for the
+/// editor's timings and thinning).
+pub fn many_poles(n: usize) -> Value {
+    let points: Vec<Value> = (0..n)
+        .map(|i| {
+            let x = i as f64;
+            json!([x, 5.0 * (x * 0.3).sin() + 0.001 * x * x])
+        })
+        .collect();
+    let mut knots = vec![0.0; 4];
+    knots.extend((1..n - 3).map(|i| i as f64 / (n - 3) as f64));
+    knots.extend([1.0; 4]);
+    json!({"degree": 3, "control_points": points, "knots": knots})
+}
+
+/// Saves a screenshot of the page as `target/<name>`; one `for_docs` also as
+/// `docs/pictures/<name>` when `UPDATE_PICTURES` is set (the README's pictures:
+/// `UPDATE_PICTURES=1 cargo test --test editor`).
+pub async fn screenshot(client: &fantoccini::Client, name: &str, for_docs: bool) {
+    let png = client.screenshot().await.expect("screenshot");
+    std::fs::create_dir_all(target_dir()).unwrap();
+    std::fs::write(target_dir().join(name), &png).unwrap();
+    if for_docs && std::env::var_os("UPDATE_PICTURES").is_some() {
+        let docs = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("docs/pictures");
+        std::fs::write(docs.join(name), &png).unwrap();
+    }
 }
 
 pub fn target_dir() -> PathBuf {

@@ -1,5 +1,6 @@
 //! `GET /` and `GET /editor/...`: the editor, a page of static files compiled into the binary
-//! (`editor/` at the repository root). Open like the probes (no API key): the page itself
+//! (`editor/` at the repository root), and `GET /favicon.ico` (its icon, which browsers ask
+//! for on any page of the service). Open like the probes (no API key): the page itself
 //! sends the key, when one is configured, on its `/v1` requests.
 //!
 //! Every file is answered with its content type, a strict Content-Security-Policy (only this
@@ -35,6 +36,7 @@ struct Asset {
 const HTML: &str = "text/html; charset=utf-8";
 const JAVASCRIPT: &str = "text/javascript; charset=utf-8";
 const CSS: &str = "text/css; charset=utf-8";
+const SVG: &str = "image/svg+xml";
 
 /// Declares the editor's files, read at compile time from `editor/`.
 macro_rules! assets {
@@ -51,16 +53,35 @@ macro_rules! assets {
 const ASSETS: &[Asset] = assets![
     ("index.html", HTML),
     ("editor.css", CSS),
+    ("favicon.svg", SVG),
     ("js/errors.js", JAVASCRIPT),
     ("js/main.js", JAVASCRIPT),
     ("js/api.js", JAVASCRIPT),
+    ("js/store.js", JAVASCRIPT),
     ("js/state.js", JAVASCRIPT),
+    ("js/options.js", JAVASCRIPT),
+    ("js/viewport.js", JAVASCRIPT),
+    ("js/render.js", JAVASCRIPT),
     ("js/view.js", JAVASCRIPT),
+    ("js/strip.js", JAVASCRIPT),
+    ("js/panel.js", JAVASCRIPT),
     ("js/interaction.js", JAVASCRIPT),
+    ("js/picking.js", JAVASCRIPT),
+    ("js/dragging.js", JAVASCRIPT),
+    ("js/precision.js", JAVASCRIPT),
+    ("js/committing.js", JAVASCRIPT),
+    ("js/connection.js", JAVASCRIPT),
+    ("js/files.js", JAVASCRIPT),
+    ("js/problems.js", JAVASCRIPT),
+    ("js/jsonsource.js", JAVASCRIPT),
+    ("js/snapping.js", JAVASCRIPT),
     ("js/geometry.js", JAVASCRIPT),
     ("js/drawing.js", JAVASCRIPT),
     ("js/sample.js", JAVASCRIPT),
 ];
+
+/// Where browsers look for a site's icon.
+pub const FAVICON_PATH: &str = "/favicon.ico";
 
 /// The editor's routes (outside `/v1`, no API key, not in the OpenAPI document).
 pub fn router<S: Clone + Send + Sync + 'static>() -> Router<S> {
@@ -72,6 +93,10 @@ pub fn router<S: Clone + Send + Sync + 'static>() -> Router<S> {
             get(|headers: HeaderMap| async move { serve("index.html", &headers) }),
         )
         .route("/editor/{*path}", get(editor_file))
+        .route(
+            FAVICON_PATH,
+            get(|headers: HeaderMap| async move { serve("favicon.svg", &headers) }),
+        )
 }
 
 /// `GET /editor/{path}`: one of the editor's files, or 404.

@@ -1,0 +1,167 @@
+// What changes the committed curve: a drag's or a nudge's solution, a dragged control
+// point, another solution from the list, undo and redo, a loaded curve. Each first asks the
+// API for the new curve's drawing and changes the state only once it has it: when the
+// service does not answer, nothing is committed and the drawing stays as it was.
+
+import * as api from "./api.js";
+import * as geometry from "./geometry.js";
+import * as model from "./state.js";
+import * as store from "./store.js";
+import { drawingOf } from "./drawing.js";
+import { describeProblem } from "./problems.js";
+import { fit, needsFit } from "./viewport.js";
+
+/** How far (pixels, at the zoom of the request) a drawn region's edge may be from the true
+ * boundary. */
+const REGION_PIXELS = 0.5;
+
+/** The regions answer at `parameter` of `curve`, drawn within REGION_PIXELS at `frame`. */
+export function regionsAt(curve, parameter, frame) {
+  return api.regions(curve, parameter, REGION_PIXELS / frame.scale);
+}
+
+/** The drawing of `curve` and, with the knots method on, its reachable regions at
+ * `parameter`; or { problem } when the drawing cannot be had. */
+export async function drawn(curve, parameter, methods) {
+  const wantsRegions = parameter !== undefined && methods.includes("knots") && !geometry.editingRefusal(curve);
+  const frame = store.get().view.frame;
+  const [drawing, regions] = await Promise.all([drawingOf(curve), wantsRegions ? regionsAt(curve, parameter, frame) : null]);
+  if (drawing.problem) return { problem: drawing.problem };
+  return {
+    drawing,
+    regions: regions?.ok ? geometry.reachableRegions(curve, regions.value) : null,
+    regionsProblem: regions && !regions.ok ? regions.problem : null,
+  };
+}
+
+/** The message for a failed request; none when the service did not answer (the banner
+ * says so). */
+export function failureMessage(problem, prefix = "", source = null) {
+  if (problem.type === api.NETWORK_ERROR) return "";
+  return `${prefix}${describeProblem(problem, source)}`;
+}
+
+/** The state `state` telling `error` (after a failure; everything else unchanged). */
+export function failed(state, problem, prefix) {
+  return { ...state, drag: null, message: "", error: failureMessage(problem, prefix) };
+}
+
+/** The frame for showing `curve`: refitted when `always`, or when the curve would leave the
+ * view or be too small in it. */
+function frameFor(state, curve, always) {
+  const box = geometry.extent(curve);
+  return always || needsFit(state.view.frame, state.view.size, box) ? fit(box, state.view.size) : state.view.frame;
+}
+
+/**
+ * Commits `curve` (on top of the history, or replacing the last commit with `replace`)
+ * once its drawing is in. `pick` ({ parameter, point, … }) stays on the new curve; the
+ * other fields go into the state as they are. Resolves to whether it committed.
+ */
+export function commitCurve(curve, { replace = false, pick = null, lastSolutions = null, family = null, lastTarget = null, message = "" }) {
+  return store.task(async () => {
+    const mine = store.nextGeneration();
+    const result = await drawn(curve, pick?.parameter, store.get().methods);
+    if (!store.isCurrent(mine)) return false;
+    const state = store.get();
+    if (result.problem) {
+      store.set(failed(state, result.problem, "Nothing committed: "));
+      return false;
+    }
+    const next = replace ? model.replaceCommit(state, curve) : model.commit(state, curve);
+    store.set({
+      ...next,
+      drawing: result.drawing,
+      regions: result.regions,
+      pick: pick ? { ...pick, base: curve } : null,
+      drag: null,
+      lastSolutions,
+      family,
+      lastTarget,
+      message,
+      error: result.regionsProblem ? describeProblem(result.regionsProblem) : "",
+    });
+    return true;
+  });
+}
+
+/** Another solution `index` of the last drag's list, replacing what the drag committed. */
+export function choose(index) {
+  const state = store.get();
+  const entry = state.lastSolutions;
+  if (!entry || state.drag || index === entry.chosen || !entry.solutions[index]) return Promise.resolve(false);
+  const solution = entry.solutions[index];
+  return commitCurve(geometry.applySolution(entry.base, solution), {
+    replace: true,
+    pick: { parameter: state.pick.parameter, point: solution.point },
+    lastSolutions: { ...entry, chosen: index },
+    family: geometry.familyOf(solution),
+    lastTarget: entry.target,
+    message: `Committed: ${geometry.describeSolution(solution)}.`,
+  });
+}
+
+/** Undo or redo (`step` is state.undo or state.redo); refits the view when needed. */
+export function historyStep(step) {
+  const state = store.get();
+  if (state.drag) return Promise.resolve(false);
+  const next = step(state);
+  if (next === state) return Promise.resolve(false);
+  return store.task(async () => {
+    const mine = store.nextGeneration();
+    const curve = model.currentCurve(next);
+    const result = await drawn(curve, undefined, next.methods);
+    if (!store.isCurrent(mine)) return false;
+    const now = store.get();
+    if (result.problem) {
+      store.set(failed(now, result.problem, "Cannot show that curve: "));
+      return false;
+    }
+    store.set({ ...next, drawing: result.drawing, view: { ...now.view, frame: frameFor(now, curve, false) }, message: "", error: "" });
+    return true;
+  });
+}
+
+/** Loads `curve` (checked by drawing it), fitting the view to it. `source` points errors
+ * into the text it came from. */
+export function loadCurve(curve, message, source = null) {
+  return store.task(async () => {
+    const mine = store.nextGeneration();
+    const result = await drawn(curve, undefined, store.get().methods);
+    if (!store.isCurrent(mine)) return false;
+    const state = store.get();
+    if (result.problem) {
+      store.set({ ...state, message: "", error: failureMessage(result.problem, "Cannot load this curve: ", source) });
+      return false;
+    }
+    const refusal = geometry.editingRefusal(curve);
+    store.set({
+      ...model.load(state, curve),
+      drawing: result.drawing,
+      view: { ...state.view, frame: frameFor(state, curve, true) },
+      message: refusal ? `${message} ${refusal}` : message,
+      error: "",
+    });
+    return true;
+  });
+}
+
+/** Draws the committed curve again (at the start, after the key changed, when the service
+ * is back), keeping the pick when there is one. */
+export function refresh(message = "") {
+  return store.task(async () => {
+    const mine = store.nextGeneration();
+    const state = store.get();
+    const curve = model.editBase(state);
+    const result = await drawn(curve, state.pick?.parameter, state.methods);
+    if (!store.isCurrent(mine)) return false;
+    const now = store.get();
+    if (result.problem) {
+      store.set({ ...now, message: "", error: failureMessage(result.problem) });
+      return false;
+    }
+    const refusal = geometry.editingRefusal(model.currentCurve(now));
+    store.set({ ...now, drawing: result.drawing, regions: result.regions, message: refusal ?? message, error: "" });
+    return true;
+  });
+}

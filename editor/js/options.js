@@ -1,0 +1,43 @@
+// What the page offers, as lists the panel is built from: the tool modes, the ways of
+// moving a picked point (the solver's `methods`), the layers of the drawing, and the kinds
+// of snapping. A new capability is one more entry here plus what it does.
+
+/** Tool modes: what a press on the drawing does. `key` is the shortcut. */
+export const TOOLS = [
+  { id: "edit", label: "Edit", key: "v", help: "press on the curve and drag it; drag a control point; drag the background to pan" },
+  { id: "pan", label: "Pan", key: "h", help: "every drag pans the view" },
+];
+
+/** The solver's methods the page can ask for (`id` is the API's name). */
+export const METHODS = [
+  { id: "knots", label: "knots (Ω1–Ω6)" },
+  { id: "control_points", label: "control points" },
+];
+
+/** Layers of the drawing that can be hidden; `shown` is the default. */
+export const LAYERS = [
+  { id: "regions", label: "regions", shown: true },
+  { id: "control", label: "control polygon", shown: true },
+  { id: "knots", label: "knot marks", shown: true },
+  { id: "grid", label: "grid", shown: false },
+];
+
+/** What a dragged point can snap to (all off by default). */
+export const SNAPS = [
+  { id: "grid", label: "grid" },
+  { id: "poles", label: "control points" },
+  { id: "knots", label: "knot points" },
+];
+
+/** The keyboard shortcuts, for the list on the page (and the test that checks it). */
+export const SHORTCUTS = [
+  ["Tab", "focus the drawing"],
+  ["← ↑ → ↓", "nudge the picked point by one pixel (Shift: ten)"],
+  ["Esc", "cancel the drag (or drop the pick)"],
+  ["F", "fit the curve into the view"],
+  ["+ / −", "zoom in / out about the centre"],
+  ["Space + drag", "pan"],
+  ["V / H", "edit tool / pan tool"],
+  ["1 – 9", "choose a solution from the list (also during a drag)"],
+  ["Ctrl+Z / Ctrl+Shift+Z", "undo / redo"],
+];

@@ -1,0 +1,184 @@
+// The panel beside the drawing: builds its lists (tools, methods, snapping, layers,
+// shortcuts, legend) from options.js once, then draws a state into it — the solution list,
+// the notices, the banner, the readout, the typed target — and mirrors what tests read into
+// body[data-*]. It reads the state and never changes it.
+
+import { describeFamily, describeSolution } from "./geometry.js";
+import { LAYERS, METHODS, SHORTCUTS, SNAPS, TOOLS } from "./options.js";
+import { currentCurve, editBase } from "./state.js";
+import { REGION_COLOURS } from "./view.js";
+import { decimals } from "./viewport.js";
+
+/** A checkbox `id` labelled `text`, appended to `parent`. */
+function checkbox(parent, id, text, name) {
+  const label = document.createElement("label");
+  const box = document.createElement("input");
+  box.type = "checkbox";
+  box.id = id;
+  box.name = name;
+  label.append(box, ` ${text}`);
+  parent.appendChild(label);
+}
+
+/** Fills the panel's lists from options.js (once, at start). */
+export function buildPanel(elements) {
+  for (const tool of TOOLS) {
+    const button = document.createElement("button");
+    button.type = "button";
+    button.id = `tool-${tool.id}`;
+    button.dataset.tool = tool.id;
+    button.textContent = tool.label;
+    button.title = `${tool.label} (${tool.key.toUpperCase()}): ${tool.help}`;
+    elements.tools.appendChild(button);
+  }
+  for (const method of METHODS) checkbox(elements.methods, `method-${method.id.replace("_", "-")}`, method.label, "method");
+  for (const kind of SNAPS) checkbox(elements.snaps, `snap-${kind.id}`, kind.label, "snap");
+  for (const shown of LAYERS) checkbox(elements.layers, `layer-${shown.id}`, shown.label, "layer");
+  for (const [keys, what] of SHORTCUTS) {
+    const term = document.createElement("dt");
+    term.textContent = keys;
+    const description = document.createElement("dd");
+    description.textContent = what;
+    elements.shortcuts.append(term, description);
+  }
+  const items = [
+    ...Object.keys(REGION_COLOURS).map((name) => [`swatch ${name}`, name.replace("omega", "Ω")]),
+    ["swatch triangle", "control triangle"],
+    ["swatch curve", "curve"],
+    ["swatch preview", "preview"],
+    ["swatch knot", "knots"],
+    ["swatch picked", "picked point"],
+    ["swatch target", "target"],
+  ];
+  for (const [className, text] of items) {
+    const item = document.createElement("li");
+    const swatch = document.createElement("span");
+    swatch.className = className;
+    item.append(swatch, text);
+    elements.legend.appendChild(item);
+  }
+}
+
+/** What the list shows: during a drag the solutions of its first answer with the kept one's
+ * live value; after a release every solution at the release's target. */
+function listed(state) {
+  const drag = state.drag;
+  if (drag?.kind === "point" && drag.alternatives) {
+    return { solutions: drag.alternatives, chosen: drag.keptIndex, live: drag.solution, nearest: drag.nearest, family: drag.family };
+  }
+  const entry = state.lastSolutions;
+  return entry ? { solutions: entry.solutions, chosen: entry.chosen, live: null, nearest: entry.nearest, family: state.family } : null;
+}
+
+let drawnList = null;
+
+function drawSolutions(state, elements) {
+  const entry = listed(state);
+  const key = entry && [entry.solutions, entry.chosen, entry.live, entry.nearest];
+  if (drawnList && key && key.every((value, i) => value === drawnList[i])) return;
+  if (!drawnList && !key) return;
+  drawnList = key;
+  elements.solutions.replaceChildren();
+  let note = "";
+  if (entry?.nearest) {
+    note = `Target outside every region: following the nearest reachable point (distance ${entry.nearest.distance.toPrecision(3)}).`;
+  } else if (state.drag?.kind === "point" && entry?.family) {
+    note = `Kept through this drag: ${describeFamily(entry.family)} (keys 1–${Math.min(entry.solutions.length, 9)} switch).`;
+  }
+  elements.solutionsNote.textContent = note;
+  for (const [index, solution] of (entry?.solutions ?? []).entries()) {
+    const item = document.createElement("li");
+    const label = document.createElement("label");
+    const radio = document.createElement("input");
+    radio.type = "radio";
+    radio.name = "solution";
+    radio.value = String(index);
+    radio.checked = index === entry.chosen;
+    const shown = index === entry.chosen && entry.live ? entry.live : solution;
+    label.append(radio, ` ${describeSolution(shown)}`);
+    item.appendChild(label);
+    if (index === entry.chosen) item.className = "kept";
+    elements.solutions.appendChild(item);
+  }
+}
+
+function drawBanner(state, elements) {
+  const connection = state.connection;
+  elements.banner.hidden = connection.state === "ok";
+  elements.banner.classList.toggle("retrying", connection.state === "retrying");
+  elements.retry.hidden = connection.state !== "unreachable";
+  elements.bannerText.textContent =
+    connection.state === "unreachable"
+      ? "The knotshape service does not answer. The drawing stays as it was and nothing is committed; the page tries again every few seconds."
+      : connection.state === "retrying"
+        ? `The service is busy (503): trying again in ${connection.seconds} s…`
+        : "";
+}
+
+const format = (value, digits) => (Number.isFinite(value) ? value.toFixed(digits) : "");
+
+function drawReadout(state, elements) {
+  const digits = decimals(state.view.frame);
+  const parts = [];
+  if (state.pointer) parts.push(`pointer x ${format(state.pointer[0], digits)}  y ${format(state.pointer[1], digits)}`);
+  const drag = state.drag;
+  if (drag?.target) {
+    parts.push(`${drag.kind === "pole" ? `control point ${drag.index}` : "target"} x ${format(drag.target[0], digits)}  y ${format(drag.target[1], digits)}${drag.snapped ? ` (snapped to ${drag.snapped})` : ""}`);
+  } else if (state.pick) {
+    parts.push(`picked t = ${state.pick.parameter.toPrecision(6)} at x ${format(state.pick.point[0], digits)}  y ${format(state.pick.point[1], digits)}`);
+  }
+  parts.push(`zoom ${(state.view.frame.scale / state.view.frame.fitted).toPrecision(3)}×`);
+  elements.readout.textContent = parts.join("   ·   ");
+}
+
+let shownPick = null;
+
+function drawTargetFields(state, elements) {
+  const enabled = Boolean(state.pick) && !state.drag;
+  for (const field of [elements.targetX, elements.targetY, elements.moveTo]) field.disabled = !enabled;
+  if (state.pick !== shownPick) {
+    shownPick = state.pick;
+    const digits = decimals(state.view.frame) + 2;
+    elements.targetX.value = state.pick ? format(state.pick.point[0], digits) : "";
+    elements.targetY.value = state.pick ? format(state.pick.point[1], digits) : "";
+  }
+}
+
+let mirroredCurve = null;
+let mirroredBase = null;
+
+/** Draws the panel part of `state`. */
+export function drawPanel(state, elements) {
+  drawSolutions(state, elements);
+  drawBanner(state, elements);
+  drawReadout(state, elements);
+  drawTargetFields(state, elements);
+  elements.message.textContent = state.message;
+  elements.error.textContent = state.error;
+  elements.undo.disabled = state.history.past.length === 0;
+  elements.redo.disabled = state.history.future.length === 0;
+  for (const button of elements.tools.children) button.setAttribute("aria-pressed", String(button.dataset.tool === state.tool));
+  for (const method of METHODS) document.getElementById(`method-${method.id.replace("_", "-")}`).checked = state.methods.includes(method.id);
+  for (const kind of SNAPS) document.getElementById(`snap-${kind.id}`).checked = state.snap[kind.id];
+  for (const shown of LAYERS) document.getElementById(`layer-${shown.id}`).checked = state.layers[shown.id];
+  const body = document.body.dataset;
+  const curve = currentCurve(state);
+  if (curve !== mirroredCurve) {
+    mirroredCurve = curve;
+    body.curve = JSON.stringify(curve);
+  }
+  const base = editBase(state);
+  if (base !== mirroredBase) {
+    mirroredBase = base;
+    body.base = base === curve ? body.curve : JSON.stringify(base);
+  }
+  body.picked = state.pick ? JSON.stringify({ parameter: state.pick.parameter, point: state.pick.point }) : "";
+  body.target = state.drag?.target ? JSON.stringify(state.drag.target) : state.lastTarget ? JSON.stringify(state.lastTarget) : "";
+  body.family = state.drag?.family ? JSON.stringify(state.drag.family) : state.family ? JSON.stringify(state.family) : "";
+  body.solutions = String(listed(state)?.solutions.length ?? 0);
+  body.message = state.message;
+  body.error = state.error;
+  body.connection = state.connection.state;
+  body.tool = state.tool;
+  body.frame = JSON.stringify(state.view.frame);
+}
