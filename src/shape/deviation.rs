@@ -51,11 +51,11 @@ pub fn max_deviation(curve: &Curve, new_knots: &[f64], interval: (f64, f64)) -> 
 }
 
 /// Largest distance `|s_old(u) - s_new(u)|` for `u` in `interval` between `curve` and
-/// `moved`, a curve of the same degree, control point count and rationality over the same
-/// knots (a control-point edit), certified as [`max_deviation`] is.
+/// `moved`, a curve of the same degree and control point count (an edit of its knots, poles
+/// or weights; either may be rational), certified as [`max_deviation`] is.
 pub fn max_deviation_of_moved_poles(curve: &Curve, moved: &Curve, interval: (f64, f64)) -> f64 {
     debug_assert_eq!(curve.degree(), moved.degree());
-    debug_assert_eq!(curve.is_rational(), moved.is_rational());
+    debug_assert_eq!(curve.control_points().len(), moved.control_points().len());
     max_deviation_between(curve, moved, moved.knots(), interval)
 }
 
@@ -76,7 +76,7 @@ fn max_deviation_between(
     }
     // Cubics (every shape request) get copies compiled for their exact sizes: 4 Bézier points,
     // 7 coefficients (13 when rational).
-    let squared = match (p, curve.is_rational()) {
+    let squared = match (p, curve.is_rational() || moved.is_rational()) {
         (3, false) => maximum_squared_gap::<4, 7>(curve, moved, 3, new_knots, lo, hi, false),
         (3, true) => maximum_squared_gap::<4, 13>(curve, moved, 3, new_knots, lo, hi, true),
         (p, rational) => maximum_squared_gap::<{ MAX_DEGREE + 1 }, { MAX_RATIO_DEGREE + 1 }>(

@@ -14,6 +14,7 @@ mod envelope;
 mod eval;
 mod insert;
 mod other_knots;
+mod rational_basis;
 mod tessellate;
 pub use other_knots::PowerPiece;
 pub mod vector;
@@ -28,5 +29,6 @@ pub use curve::{
 pub use envelope::{EnvelopeError, KnotRun};
 pub use eval::{BatchEvaluator, EvalError};
 pub use insert::{EDITING_KNOT_SPACING, EDITING_KNOTS_EACH_SIDE, InsertError};
+pub use rational_basis::{MAX_BASIS_ORDER, RationalBasis};
 pub use tessellate::{ROUNDING_MARGIN, TOLERANCE_FLOOR, TessellationError, distance_to_segment};
 pub use vector::Point;
