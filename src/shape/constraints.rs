@@ -12,7 +12,8 @@ use crate::spline::{Curve, MAX_BASIS_ORDER};
 /// `|s^(r)(u) - v| <= CONSTRAINT_TOLERANCE · size · Σ_i |R_i^(r)(u)|` (for `r = 0` the sum is 1;
 /// for derivatives it carries their units and scale, `1 / h^r` on a span of length `h`). A kept
 /// direction holds when the tangent's component across the direction is within the same bound
-/// and its component along it is positive. The target itself is met within
+/// and its component along it is positive beyond that bound (a vanishing tangent keeps no
+/// direction). The target itself is met within
 /// `CONSTRAINT_TOLERANCE · size` (the knot pairs are stricter, [`super::RESIDUAL_TOLERANCE`]).
 pub const CONSTRAINT_TOLERANCE: f64 = 1e-9;
 
@@ -318,7 +319,8 @@ impl ConstraintSet {
                     if across.is_nan() || across > condition.tolerance {
                         return Err(Breach::Missed { index });
                     }
-                    if along <= 0.0 {
+                    // A tangent that vanishes (within the tolerance) has no direction.
+                    if !(along > condition.tolerance) {
                         return Err(Breach::Reversed { index });
                     }
                 }

@@ -41,6 +41,10 @@ use crate::spline::{Curve, RationalBasis};
 /// 1), else the move is refused as ill-conditioned (it never is for finite input: a guard).
 pub const CONTROL_POINT_RESIDUAL: f64 = 1e-9;
 
+/// A pole displacement shorter than this fraction of the curve's size (and the target's
+/// distance from the origin) is rounding: the pole stays where it is.
+pub const DISPLACEMENT_ROUNDING: f64 = 4.0 * f64::EPSILON;
+
 /// The control-point move that puts `s(t)` on a target.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ControlPointSolution {
@@ -210,6 +214,7 @@ pub fn constrained_control_point_move(
         return Err(ControlPointFailure::NoFreeControlPointAtTarget);
     }
     let dims = curve.dimension().count();
+    let size = edit_size(curve).max(norm(target));
     let displacements = solve_rows(curve, &rows, variables, &column_of, columns.len(), dims);
     let mut control_points = curve.control_points().to_vec();
     let mut changed_control_points = Vec::new();
@@ -222,7 +227,8 @@ pub fn constrained_control_point_move(
             continue;
         }
         let delta = displacements[column];
-        if delta != [0.0; 3] {
+        // A displacement within rounding of zero (a pole the conditions hold still) is none.
+        if norm(delta) > DISPLACEMENT_ROUNDING * size {
             for c in 0..dims {
                 point[c] += delta[c];
             }
@@ -234,7 +240,6 @@ pub fn constrained_control_point_move(
         .ok_or(ControlPointFailure::Unmet)?;
     let point = moved.point_unchecked(t);
     let residual = distance(point, target);
-    let size = edit_size(curve).max(norm(target));
     if !(residual <= CONSTRAINT_TOLERANCE * size) || constraints.check(&moved).is_err() {
         return Err(ControlPointFailure::Unmet);
     }

@@ -13,6 +13,7 @@ mod examples;
 mod helpers;
 mod insert_knots;
 mod limits;
+mod openapi_examples;
 mod ops;
 mod pictures;
 mod pieces;
