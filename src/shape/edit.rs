@@ -11,7 +11,7 @@ use super::constraints::{Breach, ConstraintSet};
 use super::control_points::ControlPointFailure;
 use super::method::{
     EditContext, EditSolution, MethodFailure, MethodKind, MethodMembership, MethodNearest,
-    Reachable, RegionKey, WeightRegion, bare_candidates,
+    Reachable, RegionKey, WeightRegion,
 };
 use super::regions::{CandidateRegions, PolygonOptions};
 use super::solve::{CandidateOutcome, ShapeError, target_point};
@@ -160,8 +160,8 @@ pub struct WeightPairMembership {
 /// The answer to one edit.
 #[derive(Debug, Clone, PartialEq)]
 pub struct EditOutcome {
-    /// The knot pairs' candidates (cubic curves), with membership of the requested pairs when
-    /// the knot method ran (`contains` exactly when a kept solution has that side and pair).
+    /// The knot pairs' candidates, with membership of the requested pairs (`contains` exactly
+    /// when a kept solution has that side and pair); empty unless the knot method ran.
     pub candidates: Vec<CandidateOutcome>,
     /// Weight pairs active at `t`, when the weight method ran.
     pub weight_pairs: Option<Vec<WeightPairMembership>>,
@@ -361,15 +361,7 @@ pub fn edit(
         }
         outcome.solutions.extend(kept);
     }
-    outcome.candidates = knot_candidates.unwrap_or_else(|| {
-        bare_candidates(&edit.query, Some(target))
-            .into_iter()
-            .map(|candidate| CandidateOutcome {
-                candidate,
-                regions: Vec::new(),
-            })
-            .collect()
-    });
+    outcome.candidates = knot_candidates.unwrap_or_default();
     if options.measure_deviation {
         measure_and_rank(curve, &mut outcome.solutions);
     }
@@ -442,8 +434,8 @@ fn nearest(
 /// What the requested methods can reach at the picked parameter, for drawing.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ReachableRegions {
-    /// The knot pairs' candidates with their regions (cubic curves; regions only when the knot
-    /// method is requested, cut to what `keep_domain` allows).
+    /// The knot pairs' candidates with their regions, cut to what `keep_domain` allows (empty
+    /// unless the knot method is requested).
     pub candidates: Vec<CandidateRegions>,
     /// The weight pairs' quadrilaterals, when the weight method is requested (pairs with a
     /// fixed pole left out).
@@ -462,25 +454,12 @@ pub fn reachable_regions(
         candidates: Vec::new(),
         weight_regions: Vec::new(),
     };
-    let mut knots_ran = false;
     for &kind in methods {
         match kind.method().reachable(edit, options) {
             Reachable::Everywhere => {}
-            Reachable::KnotRegions(candidates) => {
-                knots_ran = true;
-                regions.candidates = candidates;
-            }
+            Reachable::KnotRegions(candidates) => regions.candidates = candidates,
             Reachable::WeightRegions(weight_regions) => regions.weight_regions = weight_regions,
         }
-    }
-    if !knots_ran {
-        regions.candidates = bare_candidates(&edit.query, None)
-            .into_iter()
-            .map(|candidate| CandidateRegions {
-                candidate,
-                regions: Vec::new(),
-            })
-            .collect();
     }
     Ok(regions)
 }

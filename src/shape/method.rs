@@ -4,7 +4,7 @@
 //! constraints, ranks and explains; a new method is one file with an [`EditMethod`] and one
 //! line in [`METHODS`].
 
-use super::candidate::{Candidate, Side};
+use super::candidate::Side;
 use super::constraints::{ConstraintSet, FixedPoles};
 use super::control_points::{ControlPointFailure, PoleVariables};
 use super::deviation::max_deviation_of_moved_poles;
@@ -231,13 +231,4 @@ pub trait EditMethod: Sync {
     fn deviation(&self, old: &Curve, solution: &EditSolution) -> f64 {
         max_deviation_of_moved_poles(old, &solution.curve, solution.affected_domain)
     }
-}
-
-/// The candidates of a cubic curve's requested sides (for answers whose knot method did not
-/// run), or none for other degrees.
-pub(crate) fn bare_candidates(query: &ShapeQuery, target: Option<Point>) -> Vec<Candidate> {
-    if query.curve.degree() != 3 {
-        return Vec::new();
-    }
-    query.candidates(target).unwrap_or_default()
 }

@@ -37,7 +37,7 @@ fn every_example_in_the_document_is_valid_against_its_schema() {
         "#/components/schemas",
         &mut found,
     );
-    assert!(found.len() > 100, "{} examples", found.len());
+    assert!(found.len() > 60, "{} examples", found.len());
     let mut invalid = Vec::new();
     for (pointer, example) in &found {
         // The document itself is the root schema, so that `$ref`s into its components

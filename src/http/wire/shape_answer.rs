@@ -90,7 +90,7 @@ pub struct MembershipResponse {
     /// Whether any requested method reaches the target: a region of a candidate holds it, a
     /// weight pair does, or the control-point move meets it (and every constraint).
     pub reachable: bool,
-    /// One entry per requested side.
+    /// One entry per requested side, when `methods` holds `knots` (else empty).
     pub candidates: Vec<MembershipCandidate>,
     /// The control-point move, when `methods` holds `control_points`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -128,7 +128,8 @@ pub struct NearestBody {
 pub struct SolveResponse {
     /// Whether any solution exists (`false` is a normal answer, not an error).
     pub reachable: bool,
-    /// One entry per requested side, with region membership.
+    /// One entry per requested side, with region membership, when `methods` holds `knots`
+    /// (else empty).
     pub candidates: Vec<MembershipCandidate>,
     /// Every solution of every requested method, sorted by `max_deviation`, smallest first.
     pub solutions: Vec<SolutionBody>,
@@ -185,8 +186,7 @@ pub struct RegionsCandidate {
      "polygon_frame": [[0.0, 0.56], [0.1936, 0.3136], [0.44, 0.0], [0.0, 0.0], [0.0, 0.56]],
      "tolerance_met": true}]}], "weight_regions": []}))]
 pub struct RegionsResponse {
-    /// One entry per requested side (cubic curves); regions only when `methods` holds
-    /// `knots`.
+    /// One entry per requested side, when `methods` holds `knots` (else empty).
     pub candidates: Vec<RegionsCandidate>,
     /// Each weight pair's reachable quadrilateral, when `methods` holds `weights` (pairs with
     /// a fixed pole left out).
