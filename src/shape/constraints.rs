@@ -320,7 +320,7 @@ impl ConstraintSet {
                         return Err(Breach::Missed { index });
                     }
                     // A tangent that vanishes (within the tolerance) has no direction.
-                    if !(along > condition.tolerance) {
+                    if along.is_nan() || along <= condition.tolerance {
                         return Err(Breach::Reversed { index });
                     }
                 }
@@ -434,7 +434,7 @@ fn condition(
     let requirement = if spec.direction_only {
         let direction = value.unwrap_or(current);
         let length = norm(direction);
-        if value.is_none() && !(length > tolerance) {
+        if value.is_none() && (length.is_nan() || length <= tolerance) {
             Requirement::UndefinedDirection
         } else {
             Requirement::Direction(scale(direction, 1.0 / length))

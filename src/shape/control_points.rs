@@ -240,7 +240,10 @@ pub fn constrained_control_point_move(
         .ok_or(ControlPointFailure::Unmet)?;
     let point = moved.point_unchecked(t);
     let residual = distance(point, target);
-    if !(residual <= CONSTRAINT_TOLERANCE * size) || constraints.check(&moved).is_err() {
+    if residual.is_nan()
+        || residual > CONSTRAINT_TOLERANCE * size
+        || constraints.check(&moved).is_err()
+    {
         return Err(ControlPointFailure::Unmet);
     }
     let affected_domain = affected_domain_of_poles(curve, &changed_control_points);
@@ -328,8 +331,8 @@ fn solve_rows(
         }
         let solution = system.solve();
         for (column, displacement) in displacements.iter_mut().enumerate() {
-            for c in 0..dims {
-                displacement[c] = unscale(column_variables[column], solution.x[column * dims + c]);
+            for (c, value) in displacement.iter_mut().take(dims).enumerate() {
+                *value = unscale(column_variables[column], solution.x[column * dims + c]);
             }
         }
         return displacements;
@@ -361,8 +364,8 @@ fn solve_rows(
             Some(e) => {
                 for normal in normals_across(e, dims) {
                     for (column, value) in coefficients(row) {
-                        for c in 0..dims {
-                            *system.coefficient_mut(r, column * dims + c) += value * normal[c];
+                        for (c, &n) in normal.iter().take(dims).enumerate() {
+                            *system.coefficient_mut(r, column * dims + c) += value * n;
                         }
                     }
                     *system.rhs_mut(r, 0) = dot(normal, row.change);
@@ -373,8 +376,8 @@ fn solve_rows(
     }
     let solution = system.solve();
     for (column, displacement) in displacements.iter_mut().enumerate() {
-        for c in 0..dims {
-            displacement[c] = unscale(column_variables[column], solution.x[column * dims + c]);
+        for (c, value) in displacement.iter_mut().take(dims).enumerate() {
+            *value = unscale(column_variables[column], solution.x[column * dims + c]);
         }
     }
     displacements

@@ -90,7 +90,7 @@ impl DenseSystem {
                 },
             );
             let length = length_sq.max(0.0).sqrt();
-            if !(length > RANK_TOLERANCE) {
+            if length.is_nan() || length <= RANK_TOLERANCE {
                 break;
             }
             self.swap_rows(step, pivot);

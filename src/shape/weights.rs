@@ -181,7 +181,7 @@ impl WeightPair {
         } else {
             let lambda = barycentric(&self.triangle, target, size)?;
             let [l0, lk, ll] = lambda;
-            if !(l0 > 0.0) {
+            if l0.is_nan() || l0 <= 0.0 {
                 return None;
             }
             [
@@ -304,9 +304,7 @@ fn closest_on_segment(point: Point, a: Point, b: Point) -> Point {
     if length_sq == 0.0 {
         return a;
     }
-    let along = (dot(sub(point, a), direction) / length_sq)
-        .max(0.0)
-        .min(1.0);
+    let along = (dot(sub(point, a), direction) / length_sq).clamp(0.0, 1.0);
     add(a, scale(direction, along))
 }
 
@@ -338,7 +336,7 @@ pub fn weight_solution(
     let new_curve = curve.with_weights(weights)?;
     let point = new_curve.point_unchecked(t);
     let residual = distance(point, target);
-    if !(residual <= CONSTRAINT_TOLERANCE * edit_size(curve).max(norm(target))) {
+    if residual.is_nan() || residual > CONSTRAINT_TOLERANCE * edit_size(curve).max(norm(target)) {
         return None;
     }
     Some(EditSolution {

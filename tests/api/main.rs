@@ -6,6 +6,7 @@ mod auth;
 mod binary;
 mod closest;
 mod connections;
+mod constraints;
 mod curves;
 mod edit;
 mod errors;
