@@ -1,10 +1,16 @@
 //! Criterion benchmark of one full knot-pair solve (both sides, all six pairs), with and
 //! without the deviation measure, on the first worked example of `tests/data/examples.json`
-//! (a 2D cubic with 8 control points; the target is reachable through Ω2 of the left side).
+//! (a 2D cubic with 8 control points; the target is reachable through Ω2 of the left side);
+//! the third release's edit: the weight method on that cubic, a full solve with all three
+//! methods, and a control-point move under four constraints on a 60-pole cubic.
 #![allow(clippy::unwrap_used)]
 
 use criterion::{Criterion, black_box, criterion_group, criterion_main};
-use knotshape::shape::{ShapeQuery, SolveOptions, control_point_move, nearest_reachable, solve};
+use knotshape::shape::{
+    ConstraintSet, ConstraintSpec, EditContext, EditOptions, FixedPoles, MethodKind, PoleVariables,
+    ShapeQuery, SolveOptions, constrained_control_point_move, control_point_move, edit,
+    nearest_reachable, solve,
+};
 use knotshape::spline::{Curve, CurveLimits};
 
 fn example_curve() -> Curve {
@@ -82,5 +88,127 @@ fn bench_solve(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, bench_solve);
+/// A planar cubic with 60 control points on a wavy line, uniform clamped knots on [0, 1].
+fn sixty_pole_curve() -> Curve {
+    let count = 60;
+    let points: Vec<Vec<f64>> = (0..count)
+        .map(|i| {
+            let x = i as f64;
+            vec![x, 2.0 * (0.7 * x).sin() + 0.5 * (1.9 * x).cos()]
+        })
+        .collect();
+    let interior = count - 4;
+    let mut knots = vec![0.0; 4];
+    knots.extend((1..=interior).map(|i| i as f64 / (interior + 1) as f64));
+    knots.extend([1.0; 4]);
+    Curve::new(3, &points, &knots, None, &CurveLimits::default()).unwrap()
+}
+
+fn bench_edit(c: &mut Criterion) {
+    let mut group = c.benchmark_group("edit");
+    // The worked example: weights alone, and all three methods, each solution measured.
+    let curve = example_curve();
+    let t = 0.42;
+    let constraints = ConstraintSet::none();
+    let fixed = FixedPoles::none(curve.control_points().len());
+    let variables = PoleVariables::free_poles(&fixed);
+    let context = EditContext {
+        query: ShapeQuery::new(&curve, t),
+        constraints: &constraints,
+        fixed: &fixed,
+        variables: &variables,
+    };
+    let options = EditOptions {
+        measure_deviation: true,
+        nearest: false,
+    };
+    // A target that all three methods reach (two weight pairs, Ω2 of the left side, poles).
+    let target = [4.9, 3.4];
+    let all = [
+        MethodKind::Knots,
+        MethodKind::ControlPoints,
+        MethodKind::Weights,
+    ];
+    let outcome = edit(&context, &all, &target, options).unwrap();
+    for kind in all {
+        assert!(
+            outcome.solutions.iter().any(|s| s.detail.method() == kind),
+            "{kind:?} reaches the benchmark's target"
+        );
+    }
+    group.bench_function("weights_on_a_cubic", |b| {
+        b.iter(|| {
+            edit(
+                &context,
+                &[MethodKind::Weights],
+                black_box(&target),
+                options,
+            )
+            .unwrap()
+        })
+    });
+    group.bench_function("all_three_methods", |b| {
+        b.iter(|| edit(&context, &all, black_box(&target), options).unwrap())
+    });
+
+    // Four constraints on a 60-pole cubic: the point and tangent pinned at u = 0.40, the
+    // tangent's direction kept at the pick, the second derivative pinned at u = 0.47.
+    let curve = sixty_pole_curve();
+    let t = 0.43;
+    let specs = [
+        ConstraintSpec {
+            parameter: 0.40,
+            order: 0,
+            value: None,
+            direction_only: false,
+        },
+        ConstraintSpec {
+            parameter: 0.40,
+            order: 1,
+            value: None,
+            direction_only: false,
+        },
+        ConstraintSpec {
+            parameter: t,
+            order: 1,
+            value: None,
+            direction_only: true,
+        },
+        ConstraintSpec {
+            parameter: 0.47,
+            order: 2,
+            value: None,
+            direction_only: false,
+        },
+    ];
+    let constraints = ConstraintSet::new(&curve, t, &specs).unwrap();
+    let fixed = FixedPoles::none(curve.control_points().len());
+    let variables = PoleVariables::free_poles(&fixed);
+    let mut target = curve.point(t).unwrap();
+    target[1] += 0.5;
+    assert!(
+        constrained_control_point_move(&curve, t, target, &constraints, &variables, true).is_ok()
+    );
+    for (name, measure_deviation) in [
+        ("four_constraints_60_poles", true),
+        ("four_constraints_60_poles_without_deviation", false),
+    ] {
+        group.bench_function(name, |b| {
+            b.iter(|| {
+                constrained_control_point_move(
+                    &curve,
+                    t,
+                    black_box(target),
+                    &constraints,
+                    &variables,
+                    measure_deviation,
+                )
+                .unwrap()
+            })
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, bench_solve, bench_edit);
 criterion_main!(benches);

@@ -187,16 +187,13 @@ fn maximum_squared_gap<const POINTS: usize, const LEN: usize>(
         let (mut left, mut right) = (interval, interval);
         left.depth += 1;
         right.depth += 1;
-        halve(
-            &interval.numerator[..len],
-            &mut left.numerator[..len],
-            &mut right.numerator[..len],
-        );
         if rational {
+            halve_pair(&interval, &mut left, &mut right, len);
+        } else {
             halve(
-                &interval.denominator[..len],
-                &mut left.denominator[..len],
-                &mut right.denominator[..len],
+                &interval.numerator[..len],
+                &mut left.numerator[..len],
+                &mut right.numerator[..len],
             );
         }
         best = best.max(value_at(&left, len - 1));
@@ -204,6 +201,33 @@ fn maximum_squared_gap<const POINTS: usize, const LEN: usize>(
         stack.push(left);
     }
     best
+}
+
+/// [`halve`] of the numerator and the denominator together (de Casteljau at `s = 1/2`): one
+/// loop over both, which the compiler runs two lanes wide.
+#[inline(always)]
+fn halve_pair<const LEN: usize>(
+    interval: &Interval<LEN>,
+    left: &mut Interval<LEN>,
+    right: &mut Interval<LEN>,
+    len: usize,
+) {
+    let mut work: [[f64; 2]; LEN] =
+        std::array::from_fn(|i| [interval.numerator[i], interval.denominator[i]]);
+    left.numerator[0] = work[0][0];
+    left.denominator[0] = work[0][1];
+    for level in 1..len {
+        for i in 0..len - level {
+            let (a, b) = (work[i], work[i + 1]);
+            work[i] = [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])];
+        }
+        left.numerator[level] = work[0][0];
+        left.denominator[level] = work[0][1];
+    }
+    for i in 0..len {
+        right.numerator[i] = work[i][0];
+        right.denominator[i] = work[i][1];
+    }
 }
 
 /// The Bézier pieces of one curve (a control net over one knot vector) on consecutive

@@ -31,8 +31,14 @@ impl Curve {
         let p = self.degree();
         let order = order.min(MAX_BASIS_ORDER);
         let span = self.span(u);
-        let mut ders = [[0.0; CAP]; CAP];
-        basis_derivatives(self.knots(), p, span, u, order, &mut ders);
+        // Buffers sized for the degree (the basis table is `(p + 1)²`): low degrees, the
+        // usual case, do not clear a table for degree 15.
+        let mut ders = [[0.0; CAP]; MAX_BASIS_ORDER + 1];
+        match p {
+            0..=3 => copy_rows::<4>(self.knots(), p, span, u, order, &mut ders),
+            4..=7 => copy_rows::<8>(self.knots(), p, span, u, order, &mut ders),
+            _ => copy_rows::<CAP>(self.knots(), p, span, u, order, &mut ders),
+        }
         let first = span - p;
         let mut rows = [[0.0; CAP]; MAX_BASIS_ORDER + 1];
         let top = order.min(p);
@@ -80,6 +86,23 @@ impl Curve {
                 self.convention(),
             )
         })
+    }
+}
+
+/// The basis derivatives up to `order` on `span` (A2.3 with `N × N` buffers, `p < N`), rows
+/// `0..=order` copied into `out`.
+fn copy_rows<const N: usize>(
+    knots: &[f64],
+    p: usize,
+    span: usize,
+    u: f64,
+    order: usize,
+    out: &mut [[f64; CAP]; MAX_BASIS_ORDER + 1],
+) {
+    let mut ders = [[0.0; N]; N];
+    basis_derivatives(knots, p, span, u, order, &mut ders);
+    for (row, values) in out.iter_mut().zip(&ders).take(order.min(p) + 1) {
+        row[..=p].copy_from_slice(&values[..=p]);
     }
 }
 
