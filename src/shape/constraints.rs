@@ -1,4 +1,4 @@
-//! Conditions that a shape edit keeps (docs/method.md §11): pins and prescribed values of the
+//! Conditions that a shape edit keeps (docs/method.md §19): pins and prescribed values of the
 //! curve's point and first two derivatives at chosen parameters, kept tangent directions, and
 //! fixed control points. Validated once into a [`ConstraintSet`] and [`FixedPoles`], so every
 //! method sees the same checked list; a method's new curve is checked against the set by

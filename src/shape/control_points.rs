@@ -1,6 +1,6 @@
 //! The other way to move a curve point: move control points instead of knots, by the least
 //! change of the free poles that puts `s(t)` on the target and meets every constraint (Fowler &
-//! Bartels 1993; The NURBS Book §11.5; docs/method.md §11).
+//! Bartels 1993; The NURBS Book §11.5; docs/method.md §19).
 //!
 //! With fixed knots and weights every derivative is linear in the poles,
 //! `s^(r)(u) = Σ_i R_i^(r)(u) d_i` ([`Curve::rational_basis_derivatives`]). The target and the
@@ -87,6 +87,8 @@ pub struct PoleVariables {
     variable_of: Vec<Option<usize>>,
     /// The number of control points of each variable.
     multiplicity: Vec<usize>,
+    /// `1 / √multiplicity` of each variable: its column's scale.
+    column_scale: Vec<f64>,
 }
 
 impl PoleVariables {
@@ -102,9 +104,14 @@ impl PoleVariables {
                 multiplicity.push(1);
             }
         }
+        let column_scale = multiplicity
+            .iter()
+            .map(|&m| 1.0 / (m as f64).sqrt())
+            .collect();
         PoleVariables {
             variable_of,
             multiplicity,
+            column_scale,
         }
     }
 
@@ -306,8 +313,7 @@ fn solve_rows(
     let p = curve.degree();
     let coefficients = |row| coefficients(row, variables, column_of, p);
     // Δ = y / √m for the solution y of the scaled columns.
-    let unscale =
-        |variable: usize, value: f64| value / (variables.multiplicity[variable] as f64).sqrt();
+    let unscale = |variable: usize, value: f64| value * variables.column_scale[variable];
     let column_variables: Vec<usize> = {
         let mut v = vec![0; columns];
         for (variable, &column) in column_of.iter().enumerate() {
@@ -394,7 +400,7 @@ fn coefficients<'a>(
     (0..=p).filter_map(move |k| {
         let value = row.basis.rows[row.order][k];
         let variable = variables.variable_of(row.basis.first + k)?;
-        let weight = 1.0 / (variables.multiplicity[variable] as f64).sqrt();
+        let weight = variables.column_scale[variable];
         (value != 0.0).then_some((column_of[variable], value * weight))
     })
 }

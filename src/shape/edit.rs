@@ -1,4 +1,4 @@
-//! One edit of the picked curve point (docs/method.md §13): runs the requested methods
+//! One edit of the picked curve point (docs/method.md §21): runs the requested methods
 //! ([`super::method`]), checks every solution against the constraints and fixed poles, ranks
 //! all methods' solutions together by `max_deviation`, says per method what was excluded and
 //! why, and finds the nearest reachable point when nothing reaches the target. The HTTP layer

@@ -1,4 +1,4 @@
-//! The small interface every way of moving a curve point answers (docs/method.md §13): its
+//! The small interface every way of moving a curve point answers (docs/method.md §21): its
 //! solutions for a target, what it can reach, the nearest point it reaches, and how far the
 //! curve moves. The edit ([`super::edit`]) runs the requested methods through it, applies the
 //! constraints, ranks and explains; a new method is one file with an [`EditMethod`] and one

@@ -1,6 +1,6 @@
 //! The shape core: move a curve point `s(t)` to a target by moving knots (Juhász & Hoffmann;
 //! Tornai's knot pairs Ω1–Ω6), control points or two weights, under constraints, per
-//! docs/method.md §3–§13.
+//! docs/method.md §3–§21.
 //!
 //! For a cubic curve and a picked parameter `t`, one knot next to `t` moves to `t` (the
 //! [`Side`]); two more knots around it (a [`KnotPair`]) are solved in closed form so that

@@ -1,5 +1,5 @@
 //! Moving a curve point by changing two weights (after The NURBS Book §11.3; docs/method.md
-//! §12).
+//! §20).
 //!
 //! At `t` the poles `i` with `N_i(t) > 0` act. For two of them, `k < l`, split off the other
 //! poles, `S₀ = Σ_{i≠k,l} w_i N_i d_i` and `W₀ = Σ_{i≠k,l} w_i N_i`, and let `a, b` be the new

@@ -1,5 +1,5 @@
 //! `POST /v1/shape/membership`, `/v1/shape/regions` and `/v1/shape/solve`: the shape edit
-//! (knot pairs, control points, weights, under constraints; docs/method.md §3–§13) over the
+//! (knot pairs, control points, weights, under constraints; docs/method.md §3–§21) over the
 //! wire. Each handler parses its request ([`ParsedShape`]), calls the core's edit
 //! ([`shape::edit`], [`shape::reachable_regions`]) and converts the outcome
 //! ([`crate::http::wire`]).
