@@ -136,20 +136,26 @@ fn bench_edit(c: &mut Criterion) {
             "{kind:?} reaches the benchmark's target"
         );
     }
-    group.bench_function("weights_on_a_cubic", |b| {
-        b.iter(|| {
-            edit(
-                &context,
-                &[MethodKind::Weights],
-                black_box(&target),
-                options,
-            )
-            .unwrap()
-        })
-    });
-    group.bench_function("all_three_methods", |b| {
-        b.iter(|| edit(&context, &all, black_box(&target), options).unwrap())
-    });
+    let unmeasured = EditOptions {
+        measure_deviation: false,
+        ..options
+    };
+    for (suffix, options) in [("", options), ("_without_deviation", unmeasured)] {
+        group.bench_function(format!("weights_on_a_cubic{suffix}"), |b| {
+            b.iter(|| {
+                edit(
+                    &context,
+                    &[MethodKind::Weights],
+                    black_box(&target),
+                    options,
+                )
+                .unwrap()
+            })
+        });
+        group.bench_function(format!("all_three_methods{suffix}"), |b| {
+            b.iter(|| edit(&context, &all, black_box(&target), options).unwrap())
+        });
+    }
 
     // Four constraints on a 60-pole cubic: the point and tangent pinned at u = 0.40, the
     // tangent's direction kept at the pick, the second derivative pinned at u = 0.47.

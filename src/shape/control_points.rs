@@ -324,6 +324,26 @@ fn solve_rows(
         v
     };
     let mut displacements = vec![[0.0; 3]; columns];
+    if let [row] = rows {
+        if row.direction.is_none() {
+            // One condition (the target alone): the closed form of the module docs, over
+            // the scaled columns, `y_j = a_j c / Σ_k a_k²`.
+            let mut coefficient = vec![0.0; columns];
+            for (column, value) in coefficients(row) {
+                coefficient[column] += value;
+            }
+            let squares: f64 = coefficient.iter().map(|a| a * a).sum();
+            if squares > 0.0 {
+                for (column, displacement) in displacements.iter_mut().enumerate() {
+                    let factor = unscale(column_variables[column], coefficient[column] / squares);
+                    for (c, value) in displacement.iter_mut().take(dims).enumerate() {
+                        *value = factor * row.change[c];
+                    }
+                }
+            }
+            return displacements;
+        }
+    }
     if rows.iter().all(|row| row.direction.is_none()) {
         // The coordinates separate: one system, `dims` right-hand sides.
         let mut system = DenseSystem::zeros(rows.len(), columns, dims);
