@@ -298,14 +298,27 @@ impl ConstraintSet {
     /// Checks every condition on `curve` (a new curve of the edit), evaluated by the spline
     /// core: the first condition it breaks, if any.
     pub fn check(&self, curve: &Curve) -> Result<(), Breach> {
-        for condition in &self.conditions {
-            let index = condition.index;
+        self.check_values(|condition| {
             let mut values = [[0.0; 3]; MAX_BASIS_ORDER + 1];
             let values = &mut values[..=condition.order];
-            if curve.derivatives(condition.parameter, values).is_err() {
+            curve
+                .derivatives(condition.parameter, values)
+                .ok()
+                .map(|()| values[condition.order])
+        })
+    }
+
+    /// Checks every condition against the new curve's value of its quantity, as `value_of`
+    /// gives it (`None`: the parameter is outside the new curve's domain).
+    pub fn check_values(
+        &self,
+        mut value_of: impl FnMut(&Condition) -> Option<Point>,
+    ) -> Result<(), Breach> {
+        for condition in &self.conditions {
+            let index = condition.index;
+            let Some(value) = value_of(condition) else {
                 return Err(Breach::OutsideDomain { index });
-            }
-            let value = values[condition.order];
+            };
             match condition.requirement {
                 Requirement::Value(required) => {
                     let gap = norm(sub(value, required));

@@ -247,9 +247,28 @@ pub fn constrained_control_point_move(
         .ok_or(ControlPointFailure::Unmet)?;
     let point = moved.point_unchecked(t);
     let residual = distance(point, target);
+    // Every condition on the new poles: with the knots and weights kept, the new value of
+    // `s^(r)(u)` is `Σ_i R_i^(r)(u) d_i` over the same basis (rows 1.. are the conditions',
+    // in order).
+    let new_values = |condition: &Condition| {
+        let position = constraints
+            .conditions()
+            .iter()
+            .position(|c| c.index == condition.index)?;
+        let row = &rows[position + 1];
+        let points = moved.control_points();
+        let mut value = [0.0; 3];
+        for k in 0..=p {
+            let r = row.basis.rows[row.order][k];
+            for c in 0..3 {
+                value[c] += r * points[row.basis.first + k][c];
+            }
+        }
+        Some(value)
+    };
     if residual.is_nan()
         || residual > CONSTRAINT_TOLERANCE * size
-        || constraints.check(&moved).is_err()
+        || constraints.check_values(new_values).is_err()
     {
         return Err(ControlPointFailure::Unmet);
     }

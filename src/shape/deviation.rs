@@ -224,9 +224,9 @@ fn halve_pair<const LEN: usize>(
         left.numerator[level] = work[0][0];
         left.denominator[level] = work[0][1];
     }
-    for i in 0..len {
-        right.numerator[i] = work[i][0];
-        right.denominator[i] = work[i][1];
+    for (i, [numerator, denominator]) in work.iter().take(len).enumerate() {
+        right.numerator[i] = *numerator;
+        right.denominator[i] = *denominator;
     }
 }
 
