@@ -6,30 +6,16 @@
 #![allow(clippy::unwrap_used)]
 
 use criterion::{Criterion, black_box, criterion_group, criterion_main};
-use knotshape::shape::{
-    ConstraintSet, ConstraintSpec, EditContext, EditOptions, FixedPoles, MethodKind, PoleVariables,
-    ShapeQuery, SolveOptions, constrained_control_point_move, control_point_move, edit,
-    nearest_reachable, solve,
-};
-use knotshape::spline::{Curve, CurveLimits};
 
-fn example_curve() -> Curve {
-    let points: Vec<Vec<f64>> = [
-        [0.0, 0.0],
-        [1.0, 3.0],
-        [3.0, 4.0],
-        [5.0, 3.5],
-        [6.0, 1.0],
-        [8.0, 0.0],
-        [9.0, 2.0],
-        [10.0, 4.0],
-    ]
-    .iter()
-    .map(|p| p.to_vec())
-    .collect();
-    let knots = [0.0, 0.0, 0.0, 0.0, 0.2, 0.35, 0.5, 0.75, 1.0, 1.0, 1.0, 1.0];
-    Curve::new(3, &points, &knots, None, &CurveLimits::default()).unwrap()
-}
+#[path = "support/edit_cases.rs"]
+mod edit_cases;
+
+use edit_cases::{ALL, EXAMPLE_PARAMETER, EXAMPLE_TARGET, constrained_case, example_curve};
+use knotshape::shape::{
+    ConstraintSet, EditContext, EditOptions, FixedPoles, MethodKind, PoleVariables, ShapeQuery,
+    SolveOptions, constrained_control_point_move, control_point_move, edit, nearest_reachable,
+    solve,
+};
 
 fn bench_solve(c: &mut Criterion) {
     let curve = example_curve();
@@ -88,32 +74,16 @@ fn bench_solve(c: &mut Criterion) {
     group.finish();
 }
 
-/// A planar cubic with 60 control points on a wavy line, uniform clamped knots on [0, 1].
-fn sixty_pole_curve() -> Curve {
-    let count = 60;
-    let points: Vec<Vec<f64>> = (0..count)
-        .map(|i| {
-            let x = i as f64;
-            vec![x, 2.0 * (0.7 * x).sin() + 0.5 * (1.9 * x).cos()]
-        })
-        .collect();
-    let interior = count - 4;
-    let mut knots = vec![0.0; 4];
-    knots.extend((1..=interior).map(|i| i as f64 / (interior + 1) as f64));
-    knots.extend([1.0; 4]);
-    Curve::new(3, &points, &knots, None, &CurveLimits::default()).unwrap()
-}
-
 fn bench_edit(c: &mut Criterion) {
     let mut group = c.benchmark_group("edit");
-    // The worked example: weights alone, and all three methods, each solution measured.
+    // The worked example: weights alone, and all three methods, each solution measured (and
+    // not).
     let curve = example_curve();
-    let t = 0.42;
     let constraints = ConstraintSet::none();
     let fixed = FixedPoles::none(curve.control_points().len());
     let variables = PoleVariables::free_poles(&fixed);
     let context = EditContext {
-        query: ShapeQuery::new(&curve, t),
+        query: ShapeQuery::new(&curve, EXAMPLE_PARAMETER),
         constraints: &constraints,
         fixed: &fixed,
         variables: &variables,
@@ -122,15 +92,9 @@ fn bench_edit(c: &mut Criterion) {
         measure_deviation: true,
         nearest: false,
     };
-    // A target that all three methods reach (two weight pairs, Ω2 of the left side, poles).
-    let target = [4.9, 3.4];
-    let all = [
-        MethodKind::Knots,
-        MethodKind::ControlPoints,
-        MethodKind::Weights,
-    ];
-    let outcome = edit(&context, &all, &target, options).unwrap();
-    for kind in all {
+    let target = EXAMPLE_TARGET;
+    let outcome = edit(&context, &ALL, &target, options).unwrap();
+    for kind in ALL {
         assert!(
             outcome.solutions.iter().any(|s| s.detail.method() == kind),
             "{kind:?} reaches the benchmark's target"
@@ -153,48 +117,11 @@ fn bench_edit(c: &mut Criterion) {
             })
         });
         group.bench_function(format!("all_three_methods{suffix}"), |b| {
-            b.iter(|| edit(&context, &all, black_box(&target), options).unwrap())
+            b.iter(|| edit(&context, &ALL, black_box(&target), options).unwrap())
         });
     }
-
-    // Four constraints on a 60-pole cubic: the point and tangent pinned at u = 0.40, the
-    // tangent's direction kept at the pick, the second derivative pinned at u = 0.47.
-    let curve = sixty_pole_curve();
-    let t = 0.43;
-    let specs = [
-        ConstraintSpec {
-            parameter: 0.40,
-            order: 0,
-            value: None,
-            direction_only: false,
-        },
-        ConstraintSpec {
-            parameter: 0.40,
-            order: 1,
-            value: None,
-            direction_only: false,
-        },
-        ConstraintSpec {
-            parameter: t,
-            order: 1,
-            value: None,
-            direction_only: true,
-        },
-        ConstraintSpec {
-            parameter: 0.47,
-            order: 2,
-            value: None,
-            direction_only: false,
-        },
-    ];
-    let constraints = ConstraintSet::new(&curve, t, &specs).unwrap();
-    let fixed = FixedPoles::none(curve.control_points().len());
-    let variables = PoleVariables::free_poles(&fixed);
-    let mut target = curve.point(t).unwrap();
-    target[1] += 0.5;
-    assert!(
-        constrained_control_point_move(&curve, t, target, &constraints, &variables, true).is_ok()
-    );
+    // Four constraints on a 60-pole cubic (benches/support/edit_cases.rs).
+    let case = constrained_case();
     for (name, measure_deviation) in [
         ("four_constraints_60_poles", true),
         ("four_constraints_60_poles_without_deviation", false),
@@ -202,11 +129,11 @@ fn bench_edit(c: &mut Criterion) {
         group.bench_function(name, |b| {
             b.iter(|| {
                 constrained_control_point_move(
-                    &curve,
-                    t,
-                    black_box(target),
-                    &constraints,
-                    &variables,
+                    &case.curve,
+                    case.t,
+                    black_box(case.target),
+                    &case.constraints,
+                    &case.variables,
                     measure_deviation,
                 )
                 .unwrap()
