@@ -1,29 +1,21 @@
 //! Criterion benchmark of one full knot-pair solve (both sides, all six pairs), with and
 //! without the deviation measure, on the first worked example of `tests/data/examples.json`
-//! (a 2D cubic with 8 control points; the target is reachable through Ω2 of the left side).
+//! (a 2D cubic with 8 control points; the target is reachable through Ω2 of the left side);
+//! the third release's edit: the weight method on that cubic, a full solve with all three
+//! methods, and a control-point move under four constraints on a 60-pole cubic.
 #![allow(clippy::unwrap_used)]
 
 use criterion::{Criterion, black_box, criterion_group, criterion_main};
-use knotshape::shape::{ShapeQuery, SolveOptions, control_point_move, nearest_reachable, solve};
-use knotshape::spline::{Curve, CurveLimits};
 
-fn example_curve() -> Curve {
-    let points: Vec<Vec<f64>> = [
-        [0.0, 0.0],
-        [1.0, 3.0],
-        [3.0, 4.0],
-        [5.0, 3.5],
-        [6.0, 1.0],
-        [8.0, 0.0],
-        [9.0, 2.0],
-        [10.0, 4.0],
-    ]
-    .iter()
-    .map(|p| p.to_vec())
-    .collect();
-    let knots = [0.0, 0.0, 0.0, 0.0, 0.2, 0.35, 0.5, 0.75, 1.0, 1.0, 1.0, 1.0];
-    Curve::new(3, &points, &knots, None, &CurveLimits::default()).unwrap()
-}
+#[path = "support/edit_cases.rs"]
+mod edit_cases;
+
+use edit_cases::{ALL, EXAMPLE_PARAMETER, EXAMPLE_TARGET, constrained_case, example_curve};
+use knotshape::shape::{
+    ConstraintSet, EditContext, EditOptions, FixedPoles, MethodKind, PoleVariables, ShapeQuery,
+    SolveOptions, constrained_control_point_move, control_point_move, edit, nearest_reachable,
+    solve,
+};
 
 fn bench_solve(c: &mut Criterion) {
     let curve = example_curve();
@@ -82,5 +74,74 @@ fn bench_solve(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, bench_solve);
+fn bench_edit(c: &mut Criterion) {
+    let mut group = c.benchmark_group("edit");
+    // The worked example: weights alone, and all three methods, each solution measured (and
+    // not).
+    let curve = example_curve();
+    let constraints = ConstraintSet::none();
+    let fixed = FixedPoles::none(curve.control_points().len());
+    let variables = PoleVariables::free_poles(&fixed);
+    let context = EditContext {
+        query: ShapeQuery::new(&curve, EXAMPLE_PARAMETER),
+        constraints: &constraints,
+        fixed: &fixed,
+        variables: &variables,
+    };
+    let options = EditOptions {
+        measure_deviation: true,
+        nearest: false,
+    };
+    let target = EXAMPLE_TARGET;
+    let outcome = edit(&context, &ALL, &target, options).unwrap();
+    for kind in ALL {
+        assert!(
+            outcome.solutions.iter().any(|s| s.detail.method() == kind),
+            "{kind:?} reaches the benchmark's target"
+        );
+    }
+    let unmeasured = EditOptions {
+        measure_deviation: false,
+        ..options
+    };
+    for (suffix, options) in [("", options), ("_without_deviation", unmeasured)] {
+        group.bench_function(format!("weights_on_a_cubic{suffix}"), |b| {
+            b.iter(|| {
+                edit(
+                    &context,
+                    &[MethodKind::Weights],
+                    black_box(&target),
+                    options,
+                )
+                .unwrap()
+            })
+        });
+        group.bench_function(format!("all_three_methods{suffix}"), |b| {
+            b.iter(|| edit(&context, &ALL, black_box(&target), options).unwrap())
+        });
+    }
+    // Four constraints on a 60-pole cubic (benches/support/edit_cases.rs).
+    let case = constrained_case();
+    for (name, measure_deviation) in [
+        ("four_constraints_60_poles", true),
+        ("four_constraints_60_poles_without_deviation", false),
+    ] {
+        group.bench_function(name, |b| {
+            b.iter(|| {
+                constrained_control_point_move(
+                    &case.curve,
+                    case.t,
+                    black_box(case.target),
+                    &case.constraints,
+                    &case.variables,
+                    measure_deviation,
+                )
+                .unwrap()
+            })
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, bench_solve, bench_edit);
 criterion_main!(benches);

@@ -746,18 +746,22 @@ fn edge_degenerate_triangle() {
         [0.0, 1.5, 3.5, 4.0],
         "Ω2",
     );
-    let polygons = region_polygons(
-        &query(&curve, t, true),
-        PolygonOptions {
-            tolerance: None,
-            max_vertices: 2000,
-        },
-    )
-    .unwrap();
-    assert!(polygons[0].regions.is_empty());
-    assert_eq!(polygons[1].regions.len(), 6);
-    for region in &polygons[1].regions {
-        assert!(region.polygon.iter().flatten().all(|v| v.is_finite()));
+    // Keeping the domain freezes a = u_3 (the domain's start): only Ω2, Ω3, Ω6 are drawn;
+    // without the rule all six.
+    for (keep, expected) in [(true, 3), (false, 6)] {
+        let polygons = region_polygons(
+            &query(&curve, t, keep),
+            PolygonOptions {
+                tolerance: None,
+                max_vertices: 2000,
+            },
+        )
+        .unwrap();
+        assert!(polygons[0].regions.is_empty());
+        assert_eq!(polygons[1].regions.len(), expected, "keep_domain {keep}");
+        for region in &polygons[1].regions {
+            assert!(region.polygon.iter().flatten().all(|v| v.is_finite()));
+        }
     }
 }
 

@@ -3,7 +3,8 @@
 //! exclusive minimums, unique region lists, exactly one way of choosing parameters, problem
 //! status codes, response headers, open operations, a `servers` entry; and the shape of
 //! answers as they are sent: optional fields of answer-only schemas are left out, never
-//! `null`, and request fields carry no `default` (generators would make such fields required).
+//! `null`, request fields carry no `default` (generators would make such fields required), and
+//! candidates are unions told apart by `applicable`.
 
 use serde_json::{Map, Value, json};
 
@@ -22,10 +23,17 @@ const ARRAY_LENGTHS: &[(&str, &str, usize, u64, u64)] = &[
     ("RegionPolygonBody", "polygon_frame", 1, 2, 2),
     ("RegionsRequest", "target", 0, 2, 3),
     ("ShapeRequest", "target", 0, 2, 3),
-    ("SolutionBody", "point", 0, 2, 3),
-    ("SolutionBody", "control_points", 1, 2, 3),
-    // Triangles: three control points.
+    ("ConstraintBody", "value", 0, 2, 3),
+    ("KnotSolutionBody", "point", 0, 2, 3),
+    ("ControlPointSolutionBody", "point", 0, 2, 3),
+    ("ControlPointSolutionBody", "control_points", 1, 2, 3),
+    ("WeightSolutionBody", "point", 0, 2, 3),
+    ("WeightRegionBody", "triangle", 1, 2, 3),
+    ("WeightRegionBody", "polygon", 1, 2, 3),
+    ("WeightRegionBody", "polygon_frame", 1, 2, 2),
+    // Triangles: three points.
     ("CandidateBody", "triangle", 0, 3, 3),
+    ("WeightRegionBody", "triangle", 0, 3, 3),
     // Pairs: `[lo, hi]` intervals and the two knots of a region.
     ("BezierSegment", "domain", 0, 2, 2),
     ("ClosestPointRequest", "range", 0, 2, 2),
@@ -33,7 +41,21 @@ const ARRAY_LENGTHS: &[(&str, &str, usize, u64, u64)] = &[
     ("EvaluateResponse", "domain", 0, 2, 2),
     ("RegionMembershipBody", "knots", 0, 2, 2),
     ("RegionPolygonBody", "knots", 0, 2, 2),
-    ("SolutionBody", "affected_domain", 0, 2, 2),
+    ("KnotSolutionBody", "affected_domain", 0, 2, 2),
+    ("ControlPointSolutionBody", "affected_domain", 0, 2, 2),
+    ("WeightSolutionBody", "affected_domain", 0, 2, 2),
+    // The two poles of a weight pair.
+    ("WeightSolutionBody", "poles", 0, 2, 2),
+    ("WeightPairBody", "poles", 0, 2, 2),
+    ("WeightRegionBody", "poles", 0, 2, 2),
+    // At most `MAX_CONSTRAINTS` constraints.
+    (
+        "ShapeRequest",
+        "constraints",
+        0,
+        0,
+        crate::shape::MAX_CONSTRAINTS as u64,
+    ),
 ];
 
 /// `(schema, property)` of lists that need at least one entry, none repeated.
@@ -41,6 +63,13 @@ const UNIQUE_LISTS: &[(&str, &str)] = &[
     ("ShapeRequest", "regions"),
     ("RegionsRequest", "regions"),
     ("ShapeRequest", "methods"),
+    ("RegionsRequest", "methods"),
+];
+
+/// `(schema, property)` of lists whose entries may not repeat (an empty list is allowed).
+const NO_REPEATS: &[(&str, &str)] = &[
+    ("ShapeRequest", "fixed_control_points"),
+    ("RegionsRequest", "fixed_control_points"),
 ];
 
 /// `(schema, property, levels of items)` of numbers that must be `> 0`.
@@ -73,6 +102,11 @@ pub fn apply(document: &mut Value) {
             array.insert("uniqueItems".into(), json!(true));
         }
     }
+    for &(schema, property) in NO_REPEATS {
+        if let Some(array) = property_at(schemas, schema, property, 0) {
+            array.insert("uniqueItems".into(), json!(true));
+        }
+    }
     for &(schema, property, levels) in POSITIVE {
         if let Some(number) = property_at(schemas, schema, property, levels) {
             number.insert("exclusiveMinimum".into(), json!(0));
@@ -90,21 +124,6 @@ pub fn apply(document: &mut Value) {
                 {"required": ["tolerance"]},
             ]),
         );
-    }
-    // The shape endpoints need a cubic.
-    for schema in ["ShapeRequest", "RegionsRequest"] {
-        if let Some(curve) = schemas
-            .get_mut(schema)
-            .and_then(|s| s.pointer_mut("/properties/curve"))
-        {
-            *curve = json!({
-                "allOf": [
-                    {"$ref": "#/components/schemas/CurveBody"},
-                    {"type": "object", "properties": {"degree": {"const": 3}}}
-                ],
-                "description": "A cubic curve: `degree` must be 3 (the knot-pair method is for cubics)."
-            });
-        }
     }
     if let Some(status) = schemas
         .get_mut("Problem")
@@ -137,7 +156,96 @@ pub fn apply(document: &mut Value) {
             }
         }
     }
+    candidates_as_unions(schemas);
     document_headers_servers_and_open_operations(document);
+}
+
+/// The candidates of membership and regions answers as unions told apart by `applicable`
+/// (`true`: the side applies and has its `triangle`; `false`: it does not, and says why in
+/// `reason`), so that typed clients can narrow them. Built from `CandidateBody`, which only
+/// serde's flattening used, and which goes.
+fn candidates_as_unions(schemas: &mut Map<String, Value>) {
+    let Some(base) = schemas.remove("CandidateBody") else {
+        return;
+    };
+    let base_required: Vec<Value> = base
+        .get("required")
+        .and_then(Value::as_array)
+        .cloned()
+        .unwrap_or_default();
+    for (name, applicable_name, inapplicable_name) in [
+        (
+            "MembershipCandidate",
+            "ApplicableMembershipCandidate",
+            "InapplicableMembershipCandidate",
+        ),
+        (
+            "RegionsCandidate",
+            "ApplicableRegionsCandidate",
+            "InapplicableRegionsCandidate",
+        ),
+    ] {
+        let Some(schema) = schemas.get(name).cloned() else {
+            continue;
+        };
+        let mut properties = base
+            .get("properties")
+            .and_then(Value::as_object)
+            .cloned()
+            .unwrap_or_default();
+        if let Some(regions) = schema.pointer("/allOf/1/properties/regions") {
+            properties.insert("regions".into(), regions.clone());
+        }
+        let example = schema.get("example").cloned().unwrap_or(Value::Null);
+        let variant = |applicable: bool| {
+            let mut properties = properties.clone();
+            let (needed, gone) = if applicable {
+                ("triangle", "reason")
+            } else {
+                ("reason", "frame")
+            };
+            properties.remove(gone);
+            properties.insert(
+                "applicable".into(),
+                json!({"type": "boolean", "const": applicable,
+                       "description": if applicable { "`true`: this side can move the point." }
+                                      else { "`false`: this side cannot move the point (see `reason`)." }}),
+            );
+            let mut required = base_required.clone();
+            required.extend([json!("regions"), json!(needed)]);
+            let example = if applicable {
+                example.clone()
+            } else {
+                json!({"side": "right", "applicable": false, "span": 2, "moved_knot": 3,
+                       "reason": "the control triangle is degenerate (its points are collinear)",
+                       "triangle": [[0.0, 0.0], [1.0, 1.0], [2.0, 2.0]], "regions": []})
+            };
+            json!({
+                "type": "object",
+                "description": if applicable { "A side that applies, with its regions." }
+                               else { "A side that does not apply (no region holds any target)." },
+                "properties": properties,
+                "required": required,
+                "example": example,
+            })
+        };
+        schemas.insert(applicable_name.into(), variant(true));
+        schemas.insert(inapplicable_name.into(), variant(false));
+        schemas.insert(
+            name.into(),
+            json!({
+                "description": schema.get("description").cloned().unwrap_or(Value::Null),
+                // The side that does not apply first: generators that try the variants in
+                // order and ignore `const` (openapi-python-client) tell them apart by the
+                // required `reason`, which an applicable side never has.
+                "oneOf": [
+                    {"$ref": format!("#/components/schemas/{inapplicable_name}")},
+                    {"$ref": format!("#/components/schemas/{applicable_name}")},
+                ],
+                "example": example,
+            }),
+        );
+    }
 }
 
 /// The array (or number) schema `levels` levels of `items` below `schema.property`, with a

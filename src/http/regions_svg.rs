@@ -1,6 +1,7 @@
 //! The regions Ω1–Ω6 as an SVG picture (`POST /v1/shape/regions` with
 //! `Accept: image/svg+xml`): one panel per candidate side with its control triangle, the
-//! regions in their colours, the picked point and the target, and a legend.
+//! regions in their colours, the picked point and the target, a panel of the weight pairs'
+//! quadrilaterals when they were asked for, and a legend.
 //!
 //! [`render`] is pure (the JSON answer in, text out); `regions_media` chooses between it and
 //! JSON by the request's `Accept` header. Each polygon's `points` are the JSON
@@ -23,6 +24,8 @@ const MARGIN: f64 = 24.0;
 const LEGEND: f64 = 28.0;
 /// Radius of the picked point and the target, in pixels.
 const DOT_RADIUS: f64 = 4.5;
+/// The colour of the weight pairs' regions (Okabe & Ito's reddish purple).
+pub const WEIGHTS_COLOUR: &str = "#cc79a7";
 
 /// The colour of each region (Okabe & Ito's colour-blind-safe palette; the editor uses the
 /// same).
@@ -70,7 +73,8 @@ pub struct NonFinite;
 /// The picture as SVG text; [`NonFinite`] when any coordinate (or the scale derived from
 /// them) is not finite.
 pub fn render(picture: &Picture<'_>) -> Result<String, NonFinite> {
-    let panels = picture.regions.candidates.len().max(1);
+    let weights = !picture.regions.weight_regions.is_empty();
+    let panels = (picture.regions.candidates.len() + usize::from(weights)).max(1);
     let width = PANEL * panels as f64;
     let height = PANEL + LEGEND;
     let mut svg = String::with_capacity(4096);
@@ -156,25 +160,94 @@ pub fn render(picture: &Picture<'_>) -> Result<String, NonFinite> {
              vector-effect=\"non-scaling-stroke\"/>\n",
             points(triangle.iter().copied())?
         ));
-        let radius = finite(DOT_RADIUS / frame.scale)?;
-        svg.push_str(&format!(
-            "<circle class=\"picked\" cx=\"{}\" cy=\"{}\" r=\"{radius}\" fill=\"#222222\"/>\n",
-            finite(picture.picked[0])?,
-            finite(picture.picked[1])?
-        ));
-        if let Some(target) = picture.target {
-            svg.push_str(&format!(
-                "<circle class=\"target\" cx=\"{}\" cy=\"{}\" r=\"{radius}\" fill=\"#ffffff\" \
-                 stroke=\"#b00020\" stroke-width=\"2\" vector-effect=\"non-scaling-stroke\"/>\n",
-                finite(target[0])?,
-                finite(target[1])?
-            ));
-        }
+        dots(&mut svg, picture, frame.scale)?;
         svg.push_str("</g>\n</g>\n");
+    }
+    if weights {
+        weights_panel(
+            &mut svg,
+            picture,
+            PANEL * picture.regions.candidates.len() as f64,
+        )?;
     }
     legend(&mut svg, picture.regions, PANEL);
     svg.push_str("</svg>\n");
     Ok(svg)
+}
+
+/// The picked point and the target, inside a drawing of scale `scale`.
+fn dots(svg: &mut String, picture: &Picture<'_>, scale: f64) -> Result<(), NonFinite> {
+    let radius = finite(DOT_RADIUS / scale)?;
+    svg.push_str(&format!(
+        "<circle class=\"picked\" cx=\"{}\" cy=\"{}\" r=\"{radius}\" fill=\"#222222\"/>\n",
+        finite(picture.picked[0])?,
+        finite(picture.picked[1])?
+    ));
+    if let Some(target) = picture.target {
+        svg.push_str(&format!(
+            "<circle class=\"target\" cx=\"{}\" cy=\"{}\" r=\"{radius}\" fill=\"#ffffff\" \
+             stroke=\"#b00020\" stroke-width=\"2\" vector-effect=\"non-scaling-stroke\"/>\n",
+            finite(target[0])?,
+            finite(target[1])?
+        ));
+    }
+    Ok(())
+}
+
+/// The panel of the weight pairs: each pair's quadrilateral and its triangle `(s₀, d_k, d_l)`.
+fn weights_panel(svg: &mut String, picture: &Picture<'_>, left: f64) -> Result<(), NonFinite> {
+    let regions = &picture.regions.weight_regions;
+    svg.push_str(&format!(
+        "<g class=\"panel\" data-method=\"weights\" transform=\"translate({} 0)\">\n",
+        number(left)
+    ));
+    svg.push_str(&format!(
+        "<rect x=\"0.5\" y=\"0.5\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#cccccc\"/>\n",
+        number(PANEL - 1.0),
+        number(PANEL - 1.0)
+    ));
+    svg.push_str(&format!(
+        "<text x=\"8\" y=\"17\">Weights: {} pairs of poles</text>\n",
+        regions.len()
+    ));
+    let mut extent = Extent::default();
+    for region in regions {
+        region
+            .polygon
+            .iter()
+            .chain(region.triangle.iter())
+            .for_each(|p| extent.add(xy(p.as_slice())));
+    }
+    extent.add(picture.picked);
+    if let Some(target) = picture.target {
+        extent.add(target);
+    }
+    let frame = extent.fit()?;
+    svg.push_str(&format!(
+        "<g class=\"drawing\" transform=\"matrix({} 0 0 {} {} {})\">\n",
+        finite(frame.scale)?,
+        finite(-frame.scale)?,
+        finite(frame.offset[0])?,
+        finite(frame.offset[1])?
+    ));
+    for region in regions {
+        let [k, l] = region.poles;
+        svg.push_str(&format!(
+            "<polygon class=\"triangle\" data-poles=\"{k} {l}\" points=\"{}\" fill=\"none\" \
+             stroke=\"#888888\" stroke-width=\"1\" stroke-dasharray=\"3 3\" \
+             vector-effect=\"non-scaling-stroke\"/>\n",
+            points(region.triangle.iter().map(|p| xy(p.as_slice())))?
+        ));
+        svg.push_str(&format!(
+            "<polygon class=\"region\" data-region=\"weights\" data-poles=\"{k} {l}\" \
+             points=\"{}\" fill=\"{WEIGHTS_COLOUR}\" fill-opacity=\"0.2\" stroke=\"{WEIGHTS_COLOUR}\" \
+             stroke-width=\"1.5\" vector-effect=\"non-scaling-stroke\"/>\n",
+            points(region.polygon.iter().map(|p| xy(p.as_slice())))?
+        ));
+    }
+    dots(svg, picture, frame.scale)?;
+    svg.push_str("</g>\n</g>\n");
+    Ok(())
 }
 
 /// The legend strip: a swatch per region drawn, then the picked point and the target.
@@ -203,6 +276,16 @@ fn legend(svg: &mut String, regions: &RegionsResponse, top: f64) {
             c = region_colour(region),
         ));
         x += 48.0;
+    }
+    if !regions.weight_regions.is_empty() {
+        svg.push_str(&format!(
+            "<rect x=\"{x}\" y=\"0\" width=\"12\" height=\"12\" fill=\"{c}\" fill-opacity=\"0.6\" \
+             stroke=\"{c}\"/><text x=\"{}\" y=\"11\">weights</text>\n",
+            number(x + 16.0),
+            x = number(x),
+            c = WEIGHTS_COLOUR,
+        ));
+        x += 80.0;
     }
     svg.push_str(&format!(
         "<circle cx=\"{}\" cy=\"6\" r=\"4.5\" fill=\"#222222\"/><text x=\"{}\" y=\"11\">picked \
@@ -336,6 +419,7 @@ mod tests {
     fn an_empty_answer_is_still_a_picture() {
         let regions = RegionsResponse {
             candidates: Vec::new(),
+            weight_regions: Vec::new(),
         };
         let picture = Picture {
             regions: &regions,

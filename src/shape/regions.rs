@@ -55,15 +55,27 @@ pub struct CandidateRegions {
 }
 
 /// The boundary polygons of every requested region of every requested side.
+///
+/// With `keep_domain`, only what solving with the same query can reach is drawn: no region of
+/// a side whose moved knot is an end of the domain (`u_p` or `u_{n+1}`, unless it already
+/// equals `t`), and no pair one of whose knots is such an end (the rule freezes that knot, so
+/// the region shrinks to a curve, of no area). The region's edge where a knot would reach a
+/// clamped end is open; the polygon draws it.
 pub fn region_polygons(
     query: &ShapeQuery,
     options: PolygonOptions,
 ) -> Result<Vec<CandidateRegions>, ShapeError> {
     let candidates = query.candidates(None)?;
+    let knots = query.curve.knots();
+    let n = query.curve.control_points().len() - 1;
+    let is_end = |index: usize| query.keep_domain && (index == 3 || index == n + 1);
     Ok(candidates
         .into_iter()
         .map(|candidate| {
-            let regions = match (candidate.is_applicable(), candidate.triangle) {
+            let span = candidate.span;
+            let side_kept =
+                !(is_end(candidate.moved_knot) && knots[candidate.moved_knot] != query.parameter);
+            let regions = match (candidate.is_applicable() && side_kept, candidate.triangle) {
                 (true, Some(triangle)) => {
                     let tolerance = options
                         .tolerance
@@ -73,6 +85,11 @@ pub fn region_polygons(
                     query
                         .pairs
                         .iter()
+                        .filter(|pair| {
+                            pair.unknowns()
+                                .iter()
+                                .all(|knot| !is_end(knot.full_index(span)))
+                        })
                         .map(|&pair| {
                             region_polygon(
                                 query.curve,

@@ -11,7 +11,9 @@ use crate::spline::{Curve, Dimension};
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum ShapeError {
     /// The method is for cubic curves only.
-    #[error("the knot-pair method needs a cubic curve (degree 3), not degree {degree}")]
+    #[error(
+        "the knot-pair method (\"knots\") needs a cubic curve (degree 3), not degree {degree}; the \"control_points\" and \"weights\" methods take any degree"
+    )]
     NotCubic { degree: usize },
     /// The picked parameter is not a finite number.
     #[error("the parameter is not a finite number")]
@@ -91,6 +93,11 @@ impl<'a> ShapeQuery<'a> {
                 degree: self.curve.degree(),
             });
         }
+        self.validate_parameter()
+    }
+
+    /// Checks that `t` is finite and in the domain (any degree).
+    pub(crate) fn validate_parameter(&self) -> Result<(), ShapeError> {
         let t = self.parameter;
         if !t.is_finite() {
             return Err(ShapeError::NonFiniteParameter);
@@ -182,7 +189,7 @@ pub struct CandidateOutcome {
 }
 
 /// The answer to a shape request.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Default)]
 pub struct SolveOutcome {
     /// One entry per requested side.
     pub candidates: Vec<CandidateOutcome>,

@@ -33,17 +33,24 @@ fn check_sensible(path: &str, request: &Value, body: &Value) {
                 .unwrap()
                 .iter()
                 .flat_map(|c| c["regions"].as_array().unwrap())
-                .any(|r| r["contains"] == true);
+                .any(|r| r["contains"] == true)
+                || body["control_points"]["contains"] == true
+                || body["weights"]["contains"] == true;
             assert_eq!(body["reachable"], any);
             assert_eq!(body["reachable"], true, "examples show reachable targets");
         }
         "/v1/shape/regions" => {
-            for candidate in body["candidates"].as_array().unwrap() {
-                for region in candidate["regions"].as_array().unwrap() {
-                    let polygon = points(&region["polygon"]);
-                    assert!(polygon.len() >= 4);
-                    assert_eq!(polygon.first(), polygon.last());
-                }
+            let weight_regions = body["weight_regions"].as_array().unwrap();
+            for region in body["candidates"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .flat_map(|c| c["regions"].as_array().unwrap())
+                .chain(weight_regions)
+            {
+                let polygon = points(&region["polygon"]);
+                assert!(polygon.len() >= 4);
+                assert_eq!(polygon.first(), polygon.last());
             }
         }
         "/v1/shape/solve" if request["nearest"] == true => {

@@ -12,16 +12,24 @@ fn pictures() -> Vec<(&'static str, Value)> {
         serde_json::from_str(include_str!("../../examples/shape-solve.json")).unwrap();
     vec![
         (
-            // Both sides' regions of the first worked example's pick, and its target.
+            // Both sides' regions of the first worked example's pick that solve reaches with
+            // the domain kept (the default), and its target.
             "regions-worked-example.svg",
             json!({"curve": example["curve"], "parameter": example["parameter"],
                    "target": example["target"]}),
         ),
         (
-            // The left side only, the consecutive pair Ω2 and the non-consecutive Ω4.
+            // The left side only, the consecutive pair Ω2 and the non-consecutive Ω4, whole
+            // (without `keep_domain` Ω4 may move the domain's start).
             "regions-omega2-omega4.svg",
             json!({"curve": example["curve"], "parameter": example["parameter"],
-                   "side": "left", "regions": ["omega2", "omega4"]}),
+                   "side": "left", "regions": ["omega2", "omega4"], "keep_domain": false}),
+        ),
+        (
+            // The weight pairs' quadrilaterals of the same pick, and the target.
+            "regions-weights.svg",
+            json!({"curve": example["curve"], "parameter": example["parameter"],
+                   "target": example["target"], "methods": ["weights"]}),
         ),
     ]
 }

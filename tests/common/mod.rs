@@ -5,6 +5,7 @@
 #![allow(clippy::unwrap_used)]
 
 pub mod compare;
+pub mod nurbs;
 
 use knotshape::shape::{KnotPair, Side};
 use knotshape::spline::{Curve, CurveLimits, Point};

@@ -70,10 +70,7 @@ fn import_request(
         curves: imported
             .curves
             .into_iter()
-            .map(|found| ImportedCurveBody {
-                curve: CurveBody::from_curve(&found.curve),
-                source: found.source,
-            })
+            .map(|found| ImportedCurveBody::new(CurveBody::from_curve(&found.curve), found.source))
             .collect(),
         skipped: imported.skipped,
     })

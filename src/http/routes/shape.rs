@@ -1,7 +1,8 @@
-//! `POST /v1/shape/membership`, `/v1/shape/regions` and `/v1/shape/solve`: the knot-pair
-//! method (docs/method.md §3–§8) and the control-point move over the wire. Each handler
-//! parses its request ([`ParsedShape`]), calls the core ([`crate::shape`]) and converts the
-//! outcome ([`crate::http::wire::shape_answer`]).
+//! `POST /v1/shape/membership`, `/v1/shape/regions` and `/v1/shape/solve`: the shape edit
+//! (knot pairs, control points, weights, under constraints; docs/method.md §3–§21) over the
+//! wire. Each handler parses its request ([`ParsedShape`]), calls the core's edit
+//! ([`shape::edit`], [`shape::reachable_regions`]) and converts the outcome
+//! ([`crate::http::wire`]).
 
 use axum::Extension;
 use axum::extract::State;
@@ -16,14 +17,14 @@ use crate::http::extract::ApiJson;
 use crate::http::middleware::AdmissionPermit;
 use crate::http::regions_media;
 use crate::http::state::AppState;
-use crate::http::wire::methods::{ControlPointMembershipBody, Methods};
+use crate::http::wire::methods::{ControlPointMembershipBody, ExclusionBody, WeightMembershipBody};
 use crate::http::wire::shape_answer::{
-    MembershipResponse, NearestBody, RegionsResponse, SolutionBody, SolveResponse,
-    control_point_solution_body, control_point_solution_path, knot_solution_body,
-    knot_solution_path, membership_candidates, regions_response, shape_error,
+    MembershipResponse, NearestBody, RegionsResponse, SolveResponse, membership_candidates,
+    regions_response, shape_error,
 };
 use crate::http::wire::shape_request::{ParsedShape, RegionsRequest, ShapeRequest};
-use crate::shape::{self, PolygonOptions, SolveOptions};
+use crate::http::wire::solutions::{SolutionBody, solution_body};
+use crate::shape::{self, EditOptions, EditOutcome, PolygonOptions};
 use crate::spline::CurveLimits;
 
 /// The smallest effective polygon vertex limit (smaller configured values act as this).
@@ -51,34 +52,73 @@ pub async fn membership(
     ApiJson(request): ApiJson<ShapeRequest>,
 ) -> Result<ApiJson<MembershipResponse>, ApiError> {
     let curve_limits = state.curve_limits;
-    // Validation is linear in the control points; the method itself is local and bounded.
-    let work = request.curve.control_points.len();
+    let work = edit_work(&request);
     compute(admission, work, move || {
-        let methods = Methods::parse(request.methods.as_deref())?;
-        let parsed = ParsedShape::parse(&request.curve, &request.regions, &curve_limits)?;
-        let query = parsed.query(request.parameter, request.side, request.keep_domain);
-        let outcome =
-            shape::membership(&query, &request.target).map_err(|error| shape_error(&error))?;
-        let control_points = methods.control_points.then(|| {
-            let target = shape::target_point(&parsed.curve, &request.target).ok();
-            let moved = target.and_then(|target| {
-                shape::control_point_move(&parsed.curve, query.parameter, target, false)
-            });
-            ControlPointMembershipBody {
-                contains: moved.is_some(),
-                changed_control_points: moved.map_or_else(Vec::new, |m| m.changed_control_points),
-            }
-        });
-        let knots_reach = methods.knots && outcome.reachable();
-        let poles_reach = control_points.as_ref().is_some_and(|c| c.contains);
+        let options = EditOptions {
+            measure_deviation: false,
+            nearest: false,
+        };
+        let (parsed, outcome) = run_edit(&request, &curve_limits, options)?;
+        let curve = &parsed.curve;
         Ok(MembershipResponse {
-            reachable: knots_reach || poles_reach,
-            candidates: membership_candidates(&parsed.curve, &outcome),
-            control_points,
+            reachable: outcome.reachable(),
+            candidates: membership_candidates(curve, &outcome.candidates),
+            control_points: outcome.control_points.clone().map(|changed| {
+                ControlPointMembershipBody {
+                    contains: changed.is_some(),
+                    changed_control_points: changed.unwrap_or_default(),
+                }
+            }),
+            weights: outcome
+                .weight_pairs
+                .as_deref()
+                .map(WeightMembershipBody::from_pairs),
+            excluded: outcome.excluded.iter().map(ExclusionBody::from).collect(),
         })
     })
     .await
     .map(ApiJson)
+}
+
+/// The work of an edit request in point evaluations (for [`compute`]): validation is linear
+/// in the control points; the control-point system grows with the cube of its rows (a few
+/// per constraint) times the poles under each row.
+fn edit_work(request: &ShapeRequest) -> usize {
+    let rows = 1 + request.constraints.as_ref().map_or(0, Vec::len);
+    let poles_per_row = request.curve.degree.saturating_add(1).min(64);
+    request
+        .curve
+        .control_points
+        .len()
+        .saturating_add(rows.pow(3).saturating_mul(poles_per_row))
+}
+
+/// Parses a solve or membership request and runs the core's edit.
+fn run_edit(
+    request: &ShapeRequest,
+    curve_limits: &CurveLimits,
+    options: EditOptions,
+) -> Result<(ParsedShape, EditOutcome), ApiError> {
+    let parsed = ParsedShape::parse(
+        &request.curve,
+        &request.regions,
+        request.methods.as_deref(),
+        curve_limits,
+    )?;
+    let conditions = parsed.conditions(
+        request.parameter,
+        request.constraints.as_deref(),
+        request.fixed_control_points.as_deref(),
+    )?;
+    let query = parsed.query(request.parameter, request.side, request.keep_domain);
+    let outcome = shape::edit(
+        &conditions.context(query),
+        &parsed.methods.kinds,
+        &request.target,
+        options,
+    )
+    .map_err(|error| shape_error(&error))?;
+    Ok((parsed, outcome))
 }
 
 /// The knot-pair solver.
@@ -104,65 +144,39 @@ pub async fn solve(
     ApiJson(request): ApiJson<ShapeRequest>,
 ) -> Result<ApiJson<SolveResponse>, ApiError> {
     let curve_limits = state.curve_limits;
-    // Validation is linear in the control points; the method itself is local and bounded.
-    let work = request.curve.control_points.len();
+    let work = edit_work(&request);
     compute(admission, work, move || {
-        let methods = Methods::parse(request.methods.as_deref())?;
-        let parsed = ParsedShape::parse(&request.curve, &request.regions, &curve_limits)?;
-        let query = parsed.query(request.parameter, request.side, request.keep_domain);
-        let options = SolveOptions {
+        let options = EditOptions {
             measure_deviation: true,
+            nearest: request.nearest,
         };
-        let outcome =
-            shape::solve(&query, &request.target, options).map_err(|error| shape_error(&error))?;
+        let (parsed, outcome) = run_edit(&request, &curve_limits, options)?;
         let curve = &parsed.curve;
-        let target =
-            shape::target_point(curve, &request.target).map_err(|error| shape_error(&error))?;
-        let mut solutions: Vec<SolutionBody> = Vec::new();
         let paths = request.svg_paths;
-        if methods.knots {
-            solutions.extend(outcome.solutions.iter().map(|s| SolutionBody {
-                svg_path: paths.then(|| knot_solution_path(curve, s)).flatten(),
-                ..knot_solution_body(curve, s)
-            }));
-        }
-        if methods.control_points {
-            let moved = shape::control_point_move(curve, query.parameter, target, true);
-            solutions.extend(moved.map(|m| {
-                SolutionBody {
-                    svg_path: paths
-                        .then(|| control_point_solution_path(curve, &m))
-                        .flatten(),
-                    ..control_point_solution_body(curve, &m)
-                }
-            }));
-        }
-        solutions.sort_by(|p, q| p.max_deviation.total_cmp(&q.max_deviation));
-        let nearest = if request.nearest && methods.knots && solutions.is_empty() {
-            shape::nearest_reachable(&query, target, true)
-                .map_err(|error| shape_error(&error))?
-                .map(|nearest| NearestBody {
-                    point: point_to_wire(nearest.point, curve.dimension()),
-                    distance: nearest.distance,
-                    solutions: nearest
-                        .solutions
-                        .iter()
-                        .map(|s| SolutionBody {
-                            svg_path: paths.then(|| knot_solution_path(curve, s)).flatten(),
-                            ..knot_solution_body(curve, s)
-                        })
-                        .collect(),
-                })
-        } else {
-            None
-        };
-        let response = SolveResponse {
+        let solutions: Vec<SolutionBody> = outcome
+            .solutions
+            .iter()
+            .map(|s| solution_body(curve, s, paths))
+            .collect();
+        let nearest = outcome.nearest.as_ref().map(|nearest| NearestBody {
+            point: point_to_wire(nearest.point, curve.dimension()),
+            distance: crate::spline::vector::distance(
+                nearest.point,
+                shape::target_point(curve, &request.target).unwrap_or(nearest.point),
+            ),
+            solutions: nearest
+                .solutions
+                .iter()
+                .map(|s| solution_body(curve, s, paths))
+                .collect(),
+        });
+        Ok(SolveResponse {
             reachable: !solutions.is_empty(),
-            candidates: membership_candidates(curve, &outcome),
+            candidates: membership_candidates(curve, &outcome.candidates),
             solutions,
             nearest,
-        };
-        Ok(response)
+            excluded: outcome.excluded.iter().map(ExclusionBody::from).collect(),
+        })
     })
     .await
     .map(ApiJson)
@@ -209,7 +223,12 @@ fn regions_request(
     limits: &Limits,
     curve_limits: &CurveLimits,
 ) -> Result<RegionsResponse, ApiError> {
-    let parsed = ParsedShape::parse(&request.curve, &request.regions, curve_limits);
+    let parsed = ParsedShape::parse(
+        &request.curve,
+        &request.regions,
+        request.methods.as_deref(),
+        curve_limits,
+    );
     let tolerance_error = match request.tolerance {
         Some(tolerance) if !(tolerance.is_finite() && tolerance > 0.0) => Some(FieldError::new(
             "/tolerance",
@@ -226,14 +245,20 @@ fn regions_request(
         }
         (Err(other), _) => return Err(other),
     };
+    let conditions = parsed.conditions(
+        request.parameter,
+        None,
+        request.fixed_control_points.as_deref(),
+    )?;
     let query = parsed.query(request.parameter, request.side, request.keep_domain);
-    let candidates = shape::region_polygons(
-        &query,
+    let reachable = shape::reachable_regions(
+        &conditions.context(query),
+        &parsed.methods.kinds,
         PolygonOptions {
             tolerance: request.tolerance,
             max_vertices: limits.max_polygon_vertices.max(MIN_POLYGON_VERTEX_LIMIT),
         },
     )
     .map_err(|error| shape_error(&error))?;
-    Ok(regions_response(&parsed.curve, candidates))
+    Ok(regions_response(&parsed.curve, reachable))
 }

@@ -3,7 +3,7 @@
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
-use crate::http::curve::CurveBody;
+use crate::http::curve::{CurveBody, WireCoordinates};
 
 /// A curve file format.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, ToSchema)]
@@ -41,12 +41,39 @@ pub struct ImportRequest {
     "knots": [0, 0, 0, 1, 1, 1], "source": "2A"
 }))]
 pub struct ImportedCurveBody {
-    /// The curve.
-    #[serde(flatten)]
-    pub curve: CurveBody,
+    /// The degree `p >= 1`.
+    #[schema(minimum = 1)]
+    pub degree: usize,
+    /// The control points, 2D or 3D.
+    #[schema(value_type = Vec<Vec<f64>>)]
+    pub control_points: Vec<WireCoordinates>,
+    /// The knots: distinct values with `multiplicities` (STEP) or the full vector (DXF).
+    pub knots: Vec<f64>,
+    /// How often each of `knots` repeats (STEP).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub multiplicities: Option<Vec<usize>>,
+    /// The weights of a rational curve.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub weights: Option<Vec<f64>>,
     /// The entity: `#N` (STEP instance name) or the DXF handle (`line L` for a DXF entity
     /// without a handle).
     pub source: String,
+}
+
+impl ImportedCurveBody {
+    /// The curve object `curve` (never periodic: files give curves over their period) with
+    /// its `source`. Its fields are spelled out rather than flattened from [`CurveBody`],
+    /// whose schema is closed (`additionalProperties: false`) and so could not be extended.
+    pub fn new(curve: CurveBody, source: String) -> Self {
+        ImportedCurveBody {
+            degree: curve.degree,
+            control_points: curve.control_points,
+            knots: curve.knots,
+            multiplicities: curve.multiplicities,
+            weights: curve.weights,
+            source,
+        }
+    }
 }
 
 /// Every B-spline curve of the file.

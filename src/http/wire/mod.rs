@@ -2,9 +2,11 @@
 //! from and to core types; handlers live in [`super::routes`].
 
 pub mod closest;
+pub mod constraints;
 pub mod curves;
 pub mod files;
 pub mod methods;
 pub mod shape_answer;
 pub mod shape_request;
+pub mod solutions;
 pub mod toolkit;

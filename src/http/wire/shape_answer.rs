@@ -8,9 +8,13 @@ use utoipa::ToSchema;
 use crate::http::curve::{WirePoint, point_to_wire};
 use crate::http::error::ApiError;
 use crate::http::pointer::JsonPointer;
-use crate::http::wire::methods::{ControlPointMembershipBody, Method};
+use crate::http::wire::methods::{ControlPointMembershipBody, ExclusionBody, WeightMembershipBody};
 use crate::http::wire::shape_request::{CandidateSide, Region};
-use crate::shape::{self, Candidate, CandidateRegions, ShapeError, ShapeField, SolveOutcome};
+use crate::http::wire::solutions::SolutionBody;
+use crate::shape::{
+    Candidate, CandidateOutcome, CandidateRegions, ReachableRegions, ShapeError, ShapeField,
+    WeightRegion,
+};
 use crate::spline::Curve;
 
 /// The target in the control triangle's frame:
@@ -80,73 +84,23 @@ pub struct MembershipCandidate {
 
 /// Which regions hold the target.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
-#[schema(example = json!({"reachable": true, "candidates": [{"side": "left", "applicable": true, "span": 4, "moved_knot": 5,
+#[schema(example = json!({"reachable": true, "excluded": [], "candidates": [{"side": "left", "applicable": true, "span": 4, "moved_knot": 5,
               "triangle": [[3.0, 4.0], [5.0, 3.5], [6.0, 1.0]], "frame": {"x": 0.18, "y": 0.106667}, "regions": [{"region": "omega2", "knots": [4, 6], "contains": true}, {"region": "omega4", "knots": [3, 6], "contains": false}]}]}))]
 pub struct MembershipResponse {
-    /// Whether any requested method reaches the target: a region of a candidate holds it, or
-    /// the control-point move was asked for.
+    /// Whether any requested method reaches the target: a region of a candidate holds it, a
+    /// weight pair does, or the control-point move meets it (and every constraint).
     pub reachable: bool,
-    /// One entry per requested side.
+    /// One entry per requested side, when `methods` holds `knots` (else empty).
     pub candidates: Vec<MembershipCandidate>,
     /// The control-point move, when `methods` holds `control_points`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub control_points: Option<ControlPointMembershipBody>,
-}
-
-/// One way to move `s(t)` onto the target: new knots (`method: "knots"`, with `region`,
-/// `side`, `span`, `moved_knot`, `changed_knots`, `knots`) or new control points
-/// (`method: "control_points"`, with `control_points`, `changed_control_points`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
-#[schema(example = json!({"method": "knots", "region": "omega2", "side": "left", "span": 4, "moved_knot": 5, "changed_knots": [4, 5, 6],
-     "knots": [0, 0, 0, 0, 0.3, 0.42, 0.6, 0.75, 1, 1, 1, 1], "point": [4.746667, 3.323333],
-     "residual": 3.2e-15, "affected_domain": [0, 1], "max_deviation": 1.030559}))]
-pub struct SolutionBody {
-    /// How the point is moved.
-    pub method: Method,
-    /// The region (knot pair) that reaches the target (knot solutions).
+    /// The weight pairs, when `methods` holds `weights`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub region: Option<Region>,
-    /// Which knot moved to `t` (knot solutions).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub side: Option<CandidateSide>,
-    /// The span `j` (full-vector numbering, as in the candidates; knot solutions).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub span: Option<usize>,
-    /// Index (caller's convention) of the knot set to `t` (knot solutions).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub moved_knot: Option<usize>,
-    /// Indices (caller's convention) of the knots whose values changed, ascending (knot
-    /// solutions).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub changed_knots: Option<Vec<usize>>,
-    /// The whole new knot vector, in the caller's convention (knot solutions).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub knots: Option<Vec<f64>>,
-    /// The multiplicities of `knots`, when the curve was sent with multiplicities (knot
-    /// solutions; knot indices then refer to the full vector).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub multiplicities: Option<Vec<usize>>,
-    /// The whole new list of control points, in the caller's order (control-point solutions).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    #[schema(value_type = Option<Vec<Vec<f64>>>)]
-    pub control_points: Option<Vec<WirePoint>>,
-    /// Indices of the control points that moved, ascending (control-point solutions).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub changed_control_points: Option<Vec<usize>>,
-    /// The new curve's point at `parameter`.
-    #[schema(value_type = Vec<f64>)]
-    pub point: WirePoint,
-    /// With `svg_paths: true` in the request: the new curve as an SVG path `d` string (as
-    /// `/v1/curves/bezier` writes it), for planar non-rational curves of degree <= 3.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub svg_path: Option<String>,
-    /// `|point - target|` (for `nearest` solutions: `|point - nearest.point|`).
-    pub residual: f64,
-    /// `[lo, hi]`: outside it the new curve equals the old one.
-    pub affected_domain: [f64; 2],
-    /// Largest distance between the old and the new curve (certified to a relative 5e-11 by
-    /// Bernstein branch and bound).
-    pub max_deviation: f64,
+    pub weights: Option<WeightMembershipBody>,
+    /// Per method and reason, what the constraints and fixed control points ruled out (as in
+    /// the solve answer).
+    pub excluded: Vec<ExclusionBody>,
 }
 
 /// The reachable point nearest to an unreachable target, and the solutions that reach it.
@@ -165,16 +119,17 @@ pub struct NearestBody {
     pub solutions: Vec<SolutionBody>,
 }
 
-/// New knot vectors that move `s(t)` to the target.
+/// Every way the requested methods move `s(t)` to the target.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
 #[schema(example = json!({"reachable": true, "candidates": [{"side": "left", "applicable": true, "span": 4, "moved_knot": 5,
-              "triangle": [[3.0, 4.0], [5.0, 3.5], [6.0, 1.0]], "frame": {"x": 0.18, "y": 0.106667}, "regions": [{"region": "omega2", "knots": [4, 6], "contains": true}, {"region": "omega4", "knots": [3, 6], "contains": false}]}], "solutions": [{"region": "omega2", "side": "left", "span": 4, "moved_knot": 5, "changed_knots": [4, 5, 6],
+              "triangle": [[3.0, 4.0], [5.0, 3.5], [6.0, 1.0]], "frame": {"x": 0.18, "y": 0.106667}, "regions": [{"region": "omega2", "knots": [4, 6], "contains": true}, {"region": "omega4", "knots": [3, 6], "contains": false}]}], "excluded": [], "solutions": [{"method": "knots", "region": "omega2", "side": "left", "span": 4, "moved_knot": 5, "changed_knots": [4, 5, 6],
      "knots": [0, 0, 0, 0, 0.3, 0.42, 0.6, 0.75, 1, 1, 1, 1], "point": [4.746667, 3.323333],
      "residual": 3.2e-15, "affected_domain": [0, 1], "max_deviation": 1.030559}]}))]
 pub struct SolveResponse {
     /// Whether any solution exists (`false` is a normal answer, not an error).
     pub reachable: bool,
-    /// One entry per requested side, with region membership.
+    /// One entry per requested side, with region membership, when `methods` holds `knots`
+    /// (else empty).
     pub candidates: Vec<MembershipCandidate>,
     /// Every solution of every requested method, sorted by `max_deviation`, smallest first.
     pub solutions: Vec<SolutionBody>,
@@ -182,6 +137,9 @@ pub struct SolveResponse {
     /// point. Absent when the target is reachable or nothing at all is.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub nearest: Option<NearestBody>,
+    /// Per method and reason, the solutions that the constraints or fixed control points
+    /// ruled out, and methods that could not meet them at all (empty without constraints).
+    pub excluded: Vec<ExclusionBody>,
 }
 
 /// One region's boundary.
@@ -226,68 +184,49 @@ pub struct RegionsCandidate {
               "triangle": [[3.0, 4.0], [5.0, 3.5], [6.0, 1.0]], "regions": [{"region": "omega2", "knots": [4, 6],
      "polygon": [[5.56, 2.1], [4.9264, 2.8128], [4.12, 3.72], [5.0, 3.5], [5.56, 2.1]],
      "polygon_frame": [[0.0, 0.56], [0.1936, 0.3136], [0.44, 0.0], [0.0, 0.0], [0.0, 0.56]],
-     "tolerance_met": true}]}]}))]
+     "tolerance_met": true}]}], "weight_regions": []}))]
 pub struct RegionsResponse {
-    /// One entry per requested side.
+    /// One entry per requested side, when `methods` holds `knots` (else empty).
     pub candidates: Vec<RegionsCandidate>,
+    /// Each weight pair's reachable quadrilateral, when `methods` holds `weights` (pairs with
+    /// a fixed pole left out).
+    pub weight_regions: Vec<WeightRegionBody>,
 }
 
-/// The wire form of a knot solution.
-pub fn knot_solution_body(curve: &Curve, solution: &shape::Solution) -> SolutionBody {
-    SolutionBody {
-        method: Method::Knots,
-        region: Some(solution.pair.into()),
-        side: Some(solution.side.into()),
-        span: Some(solution.span),
-        moved_knot: Some(caller_knot_index(curve, solution.moved_knot)),
-        changed_knots: Some(
-            solution
-                .changed_knots
-                .iter()
-                .map(|&full| caller_knot_index(curve, full))
-                .collect(),
-        ),
-        knots: Some(knots_in_caller_convention(curve, &solution.knots)),
-        multiplicities: crate::http::curve::knots_in_caller_form(curve, &solution.knots).1,
-        control_points: None,
-        changed_control_points: None,
-        point: point_to_wire(solution.point, curve.dimension()),
-        svg_path: None,
-        residual: solution.residual,
-        affected_domain: [solution.affected_domain.0, solution.affected_domain.1],
-        max_deviation: solution.max_deviation.unwrap_or(0.0),
-    }
+/// `"weights"`: the kind of a weight pair's region.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, ToSchema)]
+#[serde(rename_all = "snake_case")]
+#[schema(example = json!("weights"))]
+pub enum WeightsRegion {
+    /// A weight pair's reachable set.
+    Weights,
 }
 
-/// The wire form of a control-point solution.
-pub fn control_point_solution_body(
-    curve: &Curve,
-    solution: &shape::ControlPointSolution,
-) -> SolutionBody {
-    let dimension = curve.dimension();
-    SolutionBody {
-        method: Method::ControlPoints,
-        region: None,
-        side: None,
-        span: None,
-        moved_knot: None,
-        changed_knots: None,
-        knots: None,
-        multiplicities: None,
-        control_points: Some(
-            solution
-                .control_points
-                .iter()
-                .map(|&p| point_to_wire(p, dimension))
-                .collect(),
-        ),
-        changed_control_points: Some(solution.changed_control_points.clone()),
-        point: point_to_wire(solution.point, dimension),
-        svg_path: None,
-        residual: solution.residual,
-        affected_domain: [solution.affected_domain.0, solution.affected_domain.1],
-        max_deviation: solution.max_deviation.unwrap_or(0.0),
-    }
+/// The targets one pair of poles reaches by its weights within the weight bounds: a convex
+/// quadrilateral inside the triangle `(s₀, d_k, d_l)`, exact (its edges are straight).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
+#[schema(example = json!({"region": "weights", "poles": [3, 5],
+     "triangle": [[4.6, 2.9], [5.0, 3.5], [8.0, 0.0]],
+     "polygon": [[4.61, 2.91], [4.99, 3.48], [5.04, 3.44], [7.9, 0.07], [4.61, 2.91]],
+     "polygon_frame": [[0.002, 0.003], [0.98, 0.004], [0.97, 0.02], [0.01, 0.97], [0.002, 0.003]],
+     "tolerance_met": true}))]
+pub struct WeightRegionBody {
+    /// `"weights"`.
+    pub region: WeightsRegion,
+    /// The pair of poles `[k, l]`.
+    pub poles: [usize; 2],
+    /// `s₀` (the curve point at `parameter` of the other poles alone), `d_k`, `d_l`.
+    #[schema(value_type = Vec<Vec<f64>>)]
+    pub triangle: [WirePoint; 3],
+    /// Closed boundary polygon (first vertex repeated last) in the curve's coordinates: the
+    /// images of the weight bounds' four corners.
+    #[schema(value_type = Vec<Vec<f64>>)]
+    pub polygon: Vec<WirePoint>,
+    /// The same in the triangle's barycentric coordinates `[λ_k, λ_l]`
+    /// (`p = s₀ + λ_k (d_k - s₀) + λ_l (d_l - s₀)`).
+    pub polygon_frame: Vec<[f64; 2]>,
+    /// Always true: the polygon is the exact boundary.
+    pub tolerance_met: bool,
 }
 
 /// The 422 for a core shape error, pointing at the offending request field.
@@ -341,9 +280,11 @@ pub fn candidate_body(curve: &Curve, candidate: &Candidate) -> CandidateBody {
     }
 }
 
-pub fn membership_candidates(curve: &Curve, outcome: &SolveOutcome) -> Vec<MembershipCandidate> {
-    outcome
-        .candidates
+pub fn membership_candidates(
+    curve: &Curve,
+    candidates: &[CandidateOutcome],
+) -> Vec<MembershipCandidate> {
+    candidates
         .iter()
         .map(|entry| MembershipCandidate {
             candidate: candidate_body(curve, &entry.candidate),
@@ -360,10 +301,33 @@ pub fn membership_candidates(curve: &Curve, outcome: &SolveOutcome) -> Vec<Membe
         .collect()
 }
 
-/// The wire form of the regions' polygons of every requested side.
-pub fn regions_response(curve: &Curve, candidates: Vec<CandidateRegions>) -> RegionsResponse {
+/// The wire form of a weight pair's region.
+fn weight_region_body(curve: &Curve, region: &WeightRegion) -> WeightRegionBody {
     let dimension = curve.dimension();
+    WeightRegionBody {
+        region: WeightsRegion::Weights,
+        poles: region.pair.poles,
+        triangle: region.pair.triangle.map(|p| point_to_wire(p, dimension)),
+        polygon: region
+            .polygon
+            .iter()
+            .map(|&p| point_to_wire(p, dimension))
+            .collect(),
+        polygon_frame: region.polygon_frame.clone(),
+        tolerance_met: true,
+    }
+}
+
+/// The wire form of the reachable regions of every requested method.
+pub fn regions_response(curve: &Curve, reachable: ReachableRegions) -> RegionsResponse {
+    let dimension = curve.dimension();
+    let candidates: Vec<CandidateRegions> = reachable.candidates;
     RegionsResponse {
+        weight_regions: reachable
+            .weight_regions
+            .iter()
+            .map(|region| weight_region_body(curve, region))
+            .collect(),
         candidates: candidates
             .into_iter()
             .map(|outcome| RegionsCandidate {
@@ -386,24 +350,4 @@ pub fn regions_response(curve: &Curve, candidates: Vec<CandidateRegions>) -> Reg
             })
             .collect(),
     }
-}
-
-/// The SVG path of a knot solution's new curve (`None` where SVG cannot draw it exactly).
-pub fn knot_solution_path(curve: &Curve, solution: &shape::Solution) -> Option<String> {
-    let moved = curve.with_full_knots(solution.knots.clone())?;
-    path_of(&moved)
-}
-
-/// The SVG path of a control-point solution's new curve.
-pub fn control_point_solution_path(
-    curve: &Curve,
-    solution: &shape::ControlPointSolution,
-) -> Option<String> {
-    let moved = curve.with_control_points(solution.control_points.clone())?;
-    path_of(&moved)
-}
-
-fn path_of(curve: &Curve) -> Option<String> {
-    let pieces: Vec<_> = curve.bezier_pieces().collect();
-    crate::http::svg_path::svg_path(curve, &pieces)
 }

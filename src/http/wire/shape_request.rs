@@ -1,5 +1,6 @@
 //! Wire types of the shape requests (membership, solve, regions) and their parsing into the
-//! core's query: sides, regions, the cubic curve.
+//! core's edit: methods, sides, regions, the curve (cubic for the knot pairs), constraints and
+//! fixed control points.
 
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
@@ -7,8 +8,12 @@ use utoipa::ToSchema;
 use crate::http::curve::CurveBody;
 use crate::http::error::{ApiError, FieldError};
 use crate::http::pointer::JsonPointer;
-use crate::http::wire::methods::Method;
-use crate::shape::{KnotPair, ShapeError, ShapeQuery, SideChoice};
+use crate::http::wire::constraints::{ConstraintBody, parse_constraints, parse_fixed};
+use crate::http::wire::methods::{Method, Methods};
+use crate::shape::{
+    ConstraintSet, EditContext, FixedPoles, KnotPair, PoleVariables, ShapeError, ShapeQuery,
+    SideChoice,
+};
 use crate::spline::{Curve, CurveLimits};
 
 /// The degree the knot-pair method works on.
@@ -144,7 +149,7 @@ fn keep_domain_default() -> bool {
     "keep_domain": true
 }))]
 pub struct ShapeRequest {
-    /// A cubic curve (degree 3).
+    /// The curve: cubic when `methods` holds `knots` (the default), any degree otherwise.
     pub curve: CurveBody,
     /// The picked parameter `t`, inside the domain; one outside it by at most `1e-12` of the
     /// domain's length (or 4 units of roundoff of the ends) is taken as the nearer end.
@@ -168,11 +173,23 @@ pub struct ShapeRequest {
     #[serde(default)]
     #[schema(example = false)]
     pub nearest: bool,
-    /// The ways to move the point (default `["knots"]`): `knots` (the knot pairs) and/or
-    /// `control_points` (the least-squares move of the poles whose basis is non-zero at `t`).
+    /// The ways to move the point (default `["knots"]`): `knots` (the knot pairs, cubic
+    /// curves), `control_points` (the least-norm move of the free poles) and `weights` (two
+    /// weights of the poles active at `t`); their solutions are ranked together.
     #[serde(default)]
     #[schema(value_type = Option<Vec<Method>>, example = json!(["knots", "control_points"]))]
     pub methods: Option<Vec<String>>,
+    /// Conditions every solution keeps (at most 32; order irrelevant): pins and prescribed
+    /// values of the point and first two derivatives, kept tangent directions. Solutions that
+    /// break one are left out and counted in `excluded`.
+    #[serde(default)]
+    #[schema(example = json!([{"parameter": 0.0, "order": 0}, {"parameter": 0.8, "order": 1, "direction_only": true}]))]
+    pub constraints: Option<Vec<ConstraintBody>>,
+    /// Indices of control points no solution may move (the weight method: whose weights it
+    /// may not change); no repeats.
+    #[serde(default)]
+    #[schema(example = json!([0, 7]))]
+    pub fixed_control_points: Option<Vec<usize>>,
     /// Solve only: give each solution the `svg_path` of its new curve (planar non-rational
     /// curves of degree <= 3), so that a drag can draw its preview without another request
     /// (default `false`).
@@ -193,7 +210,7 @@ pub struct ShapeRequest {
     "tolerance": 0.01
 }))]
 pub struct RegionsRequest {
-    /// A cubic curve (degree 3).
+    /// The curve: cubic when `methods` holds `knots` (the default), any degree otherwise.
     pub curve: CurveBody,
     /// The picked parameter `t`, inside the domain; one outside it by at most `1e-12` of the
     /// domain's length (or 4 units of roundoff of the ends) is taken as the nearer end.
@@ -205,11 +222,21 @@ pub struct RegionsRequest {
     /// The regions to draw (default all six); no repeats.
     #[serde(default)]
     pub regions: Option<Vec<Region>>,
-    /// Accepted for symmetry with the other shape endpoints; the polygons are the whole
-    /// regions (membership and solve apply the rule).
+    /// As in solve (default `true`): a drawn region holds only targets that solve reaches
+    /// with the same request, so pairs whose knots the rule freezes are not drawn.
     #[serde(default = "keep_domain_default")]
-    #[schema(default = true)]
+    #[schema(default = true, example = true)]
     pub keep_domain: bool,
+    /// The methods whose reachable sets to draw (default `["knots"]`): `knots` (the regions
+    /// of the candidates), `weights` (each weight pair's quadrilateral, in
+    /// `weight_regions`); `control_points` reaches every target and draws nothing.
+    #[serde(default)]
+    #[schema(value_type = Option<Vec<Method>>, example = json!(["knots", "weights"]))]
+    pub methods: Option<Vec<String>>,
+    /// As in solve: the weight pairs of these control points are not drawn.
+    #[serde(default)]
+    #[schema(example = json!([0]))]
+    pub fixed_control_points: Option<Vec<usize>>,
     /// Largest distance, in curve coordinates, between the true boundary and the polygon
     /// (> 0; default 1/1000 of the control triangle's longest edge). Refinement also stops at
     /// the configured vertex limit (then `tolerance_met` is false).
@@ -225,20 +252,36 @@ pub struct RegionsRequest {
 
 /// The validated parts shared by the shape endpoints.
 pub struct ParsedShape {
-    /// The cubic curve.
+    /// The curve (cubic when the knot pairs are requested).
     pub curve: Curve,
+    /// The requested methods.
+    pub methods: Methods,
     /// The requested knot pairs, in order, without repeats.
     pub pairs: Vec<KnotPair>,
 }
 
+/// The validated conditions of an edit, which the core's [`EditContext`] borrows.
+pub struct ParsedConditions {
+    /// The constraints.
+    pub constraints: ConstraintSet,
+    /// The fixed control points.
+    pub fixed: FixedPoles,
+    /// The free poles as variables of the control-point system.
+    pub variables: PoleVariables,
+}
+
 impl ParsedShape {
-    /// Checks the degree first (the method is for cubics), then the curve and the regions.
+    /// Checks the methods, then the degree (the knot pairs need a cubic: a 422 at
+    /// `/curve/degree` that names the methods that take any degree), then the curve and the
+    /// regions.
     pub fn parse(
         curve: &CurveBody,
         regions: &Option<Vec<Region>>,
+        methods: Option<&[String]>,
         curve_limits: &CurveLimits,
     ) -> Result<ParsedShape, ApiError> {
-        if curve.degree != CUBIC {
+        let methods = Methods::parse(methods)?;
+        if methods.knots() && curve.degree != CUBIC {
             return Err(ApiError::invalid(
                 "/curve/degree",
                 ShapeError::NotCubic {
@@ -274,7 +317,11 @@ impl ParsedShape {
             }
         };
         match parsed_curve {
-            Some(curve) if errors.is_empty() => Ok(ParsedShape { curve, pairs }),
+            Some(curve) if errors.is_empty() => Ok(ParsedShape {
+                curve,
+                methods,
+                pairs,
+            }),
             _ => Err(ApiError::Invalid(errors)),
         }
     }
@@ -289,6 +336,43 @@ impl ParsedShape {
             side: side.into(),
             pairs: &self.pairs,
             keep_domain,
+        }
+    }
+
+    /// Validates the constraints (for the snapped picked parameter) and fixed control points,
+    /// every malformed entry reported with its pointer.
+    pub fn conditions(
+        &self,
+        parameter: f64,
+        constraints: Option<&[ConstraintBody]>,
+        fixed_control_points: Option<&[usize]>,
+    ) -> Result<ParsedConditions, ApiError> {
+        let t = self.curve.snap_to_domain(parameter).unwrap_or(parameter);
+        let mut errors = Vec::new();
+        let constraints = parse_constraints(&self.curve, t, constraints, &mut errors);
+        let fixed = parse_fixed(&self.curve, fixed_control_points, &mut errors);
+        match (constraints, fixed) {
+            (Some(constraints), Some(fixed)) if errors.is_empty() => {
+                let variables = PoleVariables::free_poles(&fixed);
+                Ok(ParsedConditions {
+                    constraints,
+                    fixed,
+                    variables,
+                })
+            }
+            _ => Err(ApiError::Invalid(errors)),
+        }
+    }
+}
+
+impl ParsedConditions {
+    /// The core's edit context for `query`.
+    pub fn context<'a>(&'a self, query: ShapeQuery<'a>) -> EditContext<'a> {
+        EditContext {
+            query,
+            constraints: &self.constraints,
+            fixed: &self.fixed,
+            variables: &self.variables,
         }
     }
 }

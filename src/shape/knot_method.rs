@@ -1,0 +1,84 @@
+//! The knot pairs Ω1–Ω6 ([`super::solve`], [`super::regions`], [`super::nearest`]) behind the
+//! edit's interface ([`EditMethod`]). Cubic curves only.
+
+use super::method::{
+    EditContext, EditMethod, EditSolution, MethodKind, MethodMembership, MethodNearest,
+    MethodSolutions, Reachable, SolutionDetail,
+};
+use super::nearest::nearest_reachable;
+use super::regions::{PolygonOptions, region_polygons};
+use super::solve::{ShapeError, Solution, SolveOptions, solve};
+use crate::spline::Curve;
+use crate::spline::vector::Point;
+
+/// The knot-pair method.
+#[derive(Debug, Clone, Copy)]
+pub struct KnotPairs;
+
+/// The edit's form of a knot-pair solution (its new curve built from the new knots).
+fn edit_solution(curve: &Curve, solution: Solution) -> Option<EditSolution> {
+    let new_curve = curve.with_full_knots(solution.knots)?;
+    Some(EditSolution {
+        detail: SolutionDetail::Knots {
+            pair: solution.pair,
+            side: solution.side,
+            span: solution.span,
+            moved_knot: solution.moved_knot,
+            changed_knots: solution.changed_knots,
+        },
+        curve: new_curve,
+        point: solution.point,
+        residual: solution.residual,
+        affected_domain: solution.affected_domain,
+        max_deviation: solution.max_deviation,
+    })
+}
+
+impl EditMethod for KnotPairs {
+    fn kind(&self) -> MethodKind {
+        MethodKind::Knots
+    }
+
+    fn refuses(&self, curve: &Curve) -> Option<ShapeError> {
+        (curve.degree() != 3).then(|| ShapeError::NotCubic {
+            degree: curve.degree(),
+        })
+    }
+
+    fn solve(&self, edit: &EditContext, target: Point) -> MethodSolutions {
+        let curve = edit.query.curve;
+        let dimension = curve.dimension().count();
+        let options = SolveOptions {
+            measure_deviation: false,
+        };
+        // The edit validated the query and the target: solving cannot fail.
+        let outcome = solve(&edit.query, &target[..dimension], options).unwrap_or_default();
+        MethodSolutions {
+            solutions: outcome
+                .solutions
+                .into_iter()
+                .filter_map(|s| edit_solution(curve, s))
+                .collect(),
+            failure: None,
+            membership: MethodMembership::Candidates(outcome.candidates),
+        }
+    }
+
+    fn reachable(&self, edit: &EditContext, options: PolygonOptions) -> Reachable {
+        Reachable::KnotRegions(region_polygons(&edit.query, options).unwrap_or_default())
+    }
+
+    fn nearest(&self, edit: &EditContext, target: Point) -> Option<MethodNearest> {
+        let curve = edit.query.curve;
+        let nearest = nearest_reachable(&edit.query, target, false).ok()??;
+        let solutions: Vec<EditSolution> = nearest
+            .solutions
+            .into_iter()
+            .filter_map(|s| edit_solution(curve, s))
+            .collect();
+        Some(MethodNearest {
+            point: nearest.point,
+            solutions,
+        })
+    }
+}
