@@ -153,7 +153,7 @@ impl CurveBody {
 }
 
 /// The 422 detail of an endpoint that does not take periodic curves.
-pub const PERIODIC_NOT_TAKEN: &str = "this endpoint does not take periodic curves yet (evaluate, closest-point, insert-knots, bezier and export do); send the curve in its non-periodic form (Open CASCADE: SetNotPeriodic)";
+pub const PERIODIC_NOT_TAKEN: &str = "this endpoint does not take periodic curves yet (evaluate, closest-point, insert-knots, bezier, export and the shape endpoints do); send the curve in its non-periodic form (Open CASCADE: SetNotPeriodic)";
 
 /// A parse result as in [`CurveBody::parse_collecting`].
 fn collecting(

@@ -48,7 +48,9 @@ pub fn respond(
     curve_limits: &CurveLimits,
     svg: bool,
 ) -> Result<Response, ApiError> {
-    let curve = request.curve.parse(curve_limits, "/curve")?;
+    let curve = request
+        .curve
+        .parse_allowing_periodic(curve_limits, "/curve")?;
     let target = request
         .target
         .as_deref()

@@ -267,6 +267,23 @@ impl ConstraintSet {
         Ok(ConstraintSet { conditions, clash })
     }
 
+    /// The same conditions at other parameters, `parameter(u)` for each `u` (e.g. the
+    /// window parameters of a periodic curve cut open elsewhere: the curve, so what each
+    /// condition requires, is the same there).
+    pub fn with_parameters(&self, parameter: impl Fn(f64) -> f64) -> ConstraintSet {
+        ConstraintSet {
+            conditions: self
+                .conditions
+                .iter()
+                .map(|condition| Condition {
+                    parameter: parameter(condition.parameter),
+                    ..*condition
+                })
+                .collect(),
+            clash: self.clash,
+        }
+    }
+
     /// The conditions, in the request's order.
     pub fn conditions(&self) -> &[Condition] {
         &self.conditions
@@ -550,6 +567,13 @@ impl FixedPoles {
             Ok(FixedPoles { fixed })
         } else {
             Err(issues)
+        }
+    }
+
+    /// For a curve with `count` control points, those for which `fixed(index)` holds.
+    pub fn from_fn(count: usize, fixed: impl Fn(usize) -> bool) -> FixedPoles {
+        FixedPoles {
+            fixed: (0..count).map(fixed).collect(),
         }
     }
 

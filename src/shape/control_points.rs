@@ -115,6 +115,41 @@ impl PoleVariables {
         }
     }
 
+    /// One variable per group of free control points: `group(index)` names the group of each
+    /// (a periodic curve's copies of one control point share a group). Unlike a tied run of
+    /// [`PoleVariables`] in general, each group counts once in the norm (column scale 1): it is
+    /// one control point that the data happen to hold several times. A group with a fixed
+    /// member is fixed.
+    pub fn tied(fixed: &FixedPoles, group: impl Fn(usize) -> usize) -> PoleVariables {
+        let groups: Vec<usize> = (0..fixed.len()).map(&group).collect();
+        let group_count = groups.iter().max().map_or(0, |&g| g + 1);
+        let mut group_fixed = vec![false; group_count];
+        for (index, &g) in groups.iter().enumerate() {
+            group_fixed[g] |= fixed.is_fixed(index);
+        }
+        let mut variable_of_group = vec![None; group_count];
+        let mut multiplicity = Vec::new();
+        let mut variable_of = Vec::with_capacity(fixed.len());
+        for &g in &groups {
+            if group_fixed[g] {
+                variable_of.push(None);
+                continue;
+            }
+            let variable = *variable_of_group[g].get_or_insert_with(|| {
+                multiplicity.push(0);
+                multiplicity.len() - 1
+            });
+            multiplicity[variable] += 1;
+            variable_of.push(Some(variable));
+        }
+        let column_scale = vec![1.0; multiplicity.len()];
+        PoleVariables {
+            variable_of,
+            multiplicity,
+            column_scale,
+        }
+    }
+
     /// The variable that moves control point `index`, if it is free.
     pub fn variable_of(&self, index: usize) -> Option<usize> {
         self.variable_of.get(index).copied().flatten()

@@ -75,6 +75,13 @@ pub enum ExclusionReason {
     NoFreeControlPointAtTarget,
     /// The free control points cannot meet the target and the constraints together.
     Unmet,
+    /// On a periodic curve: the change reaches a knot or control point that the data hold
+    /// twice, in one copy only (the period is too short for the change to stay away from its
+    /// other copy).
+    PeriodTooShort,
+    /// On a periodic curve: the knots change how often the first knot repeats, which in
+    /// Open CASCADE's form renumbers the control points.
+    RenumbersPoles,
 }
 
 impl ExclusionReason {
@@ -132,6 +139,14 @@ impl fmt::Display for ExclusionReason {
             ExclusionReason::Unmet => write!(
                 f,
                 "the free control points cannot meet the target and every constraint together"
+            ),
+            ExclusionReason::RenumbersPoles => write!(
+                f,
+                "it changes how often the periodic curve's first knot repeats, which renumbers the control points of the periodic form; pick a point farther from the seam"
+            ),
+            ExclusionReason::PeriodTooShort => write!(
+                f,
+                "the periodic curve's period is too short: the change would also reach another copy of a changed knot or control point"
             ),
         }
     }
@@ -271,6 +286,9 @@ pub fn edit(
     target: &[f64],
     options: EditOptions,
 ) -> Result<EditOutcome, ShapeError> {
+    if let Some(periodic) = super::periodic_edit::edit_periodic(edit, methods, target, options) {
+        return periodic;
+    }
     validate(edit, methods)?;
     let curve = edit.query.curve;
     let target = target_point(curve, target)?;
@@ -449,6 +467,10 @@ pub fn reachable_regions(
     methods: &[MethodKind],
     options: PolygonOptions,
 ) -> Result<ReachableRegions, ShapeError> {
+    if let Some(periodic) = super::periodic_edit::reachable_regions_periodic(edit, methods, options)
+    {
+        return periodic;
+    }
     validate(edit, methods)?;
     let mut regions = ReachableRegions {
         candidates: Vec::new(),

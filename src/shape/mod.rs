@@ -20,6 +20,7 @@ mod least_norm;
 mod method;
 mod nearest;
 mod pairs;
+mod periodic_edit;
 mod regions;
 mod solve;
 pub mod weights;

@@ -311,24 +311,12 @@ async fn bad_periodic_curves_are_422s_and_editing_endpoints_refuse_periodic_ones
         assert_eq!(status, 422, "{request}: {body}");
         assert_problem(422, &body, Some(pointer));
     }
-    // The editing methods do not take periodic curves yet: a clear 422, not a wrong answer.
-    let target = json!([0.5, 1.6]);
+    // The envelope and the editable-at insertion do not take periodic curves: a clear 422,
+    // not a wrong answer (the editing methods do: tests/api/periodic_edit.rs).
     for (path, request) in [
         (
             "/v1/curves/envelope",
             json!({"curve": good, "knot_index": 3}),
-        ),
-        (
-            "/v1/shape/solve",
-            json!({"curve": good, "parameter": 0.7, "target": target}),
-        ),
-        (
-            "/v1/shape/membership",
-            json!({"curve": good, "parameter": 0.7, "target": target}),
-        ),
-        (
-            "/v1/shape/regions",
-            json!({"curve": good, "parameter": 0.7}),
         ),
         (
             "/v1/curves/insert-knots",

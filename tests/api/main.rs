@@ -17,6 +17,7 @@ mod interop;
 mod limits;
 mod openapi_examples;
 mod ops;
+mod periodic_edit;
 mod pictures;
 mod pieces;
 mod reference;

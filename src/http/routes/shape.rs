@@ -30,10 +30,11 @@ use crate::spline::CurveLimits;
 /// The smallest effective polygon vertex limit (smaller configured values act as this).
 pub const MIN_POLYGON_VERTEX_LIMIT: usize = 128;
 
-/// Which regions Ω1–Ω6 contain the target.
+/// Which methods reach the target.
 ///
-/// For each side's candidate, whether each requested region holds the target; exact (decided
-/// by solving), and consistent with `/v1/shape/solve`.
+/// For each side's candidate, whether each requested region Ω1–Ω6 holds the target; whether
+/// the control-point move and each weight pair reach it; exact (decided by solving, under the
+/// same constraints), and consistent with `/v1/shape/solve`.
 #[utoipa::path(
     post,
     path = "/v1/shape/membership",
@@ -121,11 +122,13 @@ fn run_edit(
     Ok((parsed, outcome))
 }
 
-/// The knot-pair solver.
+/// Move a curve point onto a target.
 ///
-/// New knot vectors that move the curve point `s(parameter)` to `target`, one per region and
-/// candidate that reaches it, sorted by how little the curve changes. An unreachable target
-/// is a normal answer (`reachable: false`).
+/// Every way the requested `methods` move the curve point `s(parameter)` onto `target`: new
+/// knot vectors (one per knot pair and candidate that reaches it), the least-norm move of the
+/// control points, new weights of two poles; each meets every constraint, and all are sorted
+/// by how little the curve changes. An unreachable target is a normal answer
+/// (`reachable: false`, with `nearest` when asked).
 #[utoipa::path(
     post,
     path = "/v1/shape/solve",
@@ -185,7 +188,9 @@ pub async fn solve(
 /// The regions' boundary polygons.
 ///
 /// Each requested region of each side's candidate as a closed polygon, in the curve's
-/// coordinates and in frame coordinates, sampled adaptively to `tolerance`. For drawing only.
+/// coordinates and in frame coordinates, sampled adaptively to `tolerance`, cut to what solve
+/// reaches with the same `keep_domain`; with `weights` among the `methods`, each weight
+/// pair's reachable region too. For drawing only.
 #[utoipa::path(
     post,
     path = "/v1/shape/regions",

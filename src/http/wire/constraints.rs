@@ -96,7 +96,8 @@ pub fn parse_fixed(
     fixed: Option<&[usize]>,
     errors: &mut Vec<FieldError>,
 ) -> Option<FixedPoles> {
-    let count = curve.control_points().len();
+    // The caller's control points (a periodic curve's `N`, each held once).
+    let count = curve.caller_control_points().len();
     match FixedPoles::new(count, fixed.unwrap_or(&[])) {
         Ok(fixed) => Some(fixed),
         Err(issues) => {

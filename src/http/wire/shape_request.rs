@@ -291,7 +291,8 @@ impl ParsedShape {
             ));
         }
         let mut errors = Vec::new();
-        let parsed_curve = curve.parse_collecting(curve_limits, "/curve", &mut errors);
+        let parsed_curve =
+            curve.parse_collecting_allowing_periodic(curve_limits, "/curve", &mut errors);
         let pairs = match regions {
             None => KnotPair::ALL.to_vec(),
             Some(regions) => {

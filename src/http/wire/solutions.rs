@@ -6,7 +6,7 @@ use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
 use crate::http::curve::{WirePoint, point_to_wire};
-use crate::http::wire::shape_answer::{caller_knot_index, knots_in_caller_convention};
+use crate::http::wire::shape_answer::caller_knot_index;
 use crate::http::wire::shape_request::{CandidateSide, Region};
 use crate::shape::{EditSolution, SolutionDetail};
 use crate::spline::Curve;
@@ -174,6 +174,13 @@ pub fn solution_body(curve: &Curve, solution: &EditSolution, svg_path: bool) -> 
     let max_deviation = solution.max_deviation.unwrap_or(0.0);
     let residual = solution.residual;
     let svg_path = svg_path.then(|| path_of(&solution.curve)).flatten();
+    // A periodic solution's curve is already in the periodic form (of one period); any other
+    // is written in the caller's form of the request's curve.
+    let new_knots = if solution.curve.is_periodic() {
+        solution.curve.caller_knots()
+    } else {
+        curve.full_knots_in_caller_form(solution.curve.knots())
+    };
     match &solution.detail {
         SolutionDetail::Knots {
             pair,
@@ -191,9 +198,8 @@ pub fn solution_body(curve: &Curve, solution: &EditSolution, svg_path: bool) -> 
                 .iter()
                 .map(|&full| caller_knot_index(curve, full))
                 .collect(),
-            knots: knots_in_caller_convention(curve, solution.curve.knots()),
-            multiplicities: crate::http::curve::knots_in_caller_form(curve, solution.curve.knots())
-                .1,
+            knots: new_knots.knots,
+            multiplicities: new_knots.multiplicities,
             point,
             svg_path,
             residual,
@@ -206,7 +212,7 @@ pub fn solution_body(curve: &Curve, solution: &EditSolution, svg_path: bool) -> 
             method: ControlPointsMethod::ControlPoints,
             control_points: solution
                 .curve
-                .control_points()
+                .caller_control_points()
                 .iter()
                 .map(|&p| point_to_wire(p, dimension))
                 .collect(),
@@ -225,7 +231,7 @@ pub fn solution_body(curve: &Curve, solution: &EditSolution, svg_path: bool) -> 
             poles: *poles,
             weights: solution
                 .curve
-                .weights()
+                .caller_weights()
                 .map(<[f64]>::to_vec)
                 .unwrap_or_default(),
             changed_weights: changed_weights.clone(),
