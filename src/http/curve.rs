@@ -52,7 +52,7 @@ pub struct CurveBody {
     /// the sum of all multiplicities but the last, at least `max(degree, 2)`). The curve
     /// repeats with the period: any finite parameter is accepted and reduced into
     /// `[knots[0], knots[last]]` (answers give the reduced one). Taken by evaluate, closest
-    /// point, insertion, Bézier pieces and export; the other endpoints answer 422 for now.
+    /// point, insertion, Bézier pieces, export and the shape endpoints; the others answer 422.
     #[serde(default, skip_serializing_if = "is_false")]
     #[schema(example = false)]
     pub periodic: bool,
