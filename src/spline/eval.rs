@@ -413,36 +413,46 @@ impl<'c> BatchEvaluator<'c> {
     /// (`out.len() == count >= 2`); the parameters are [`Curve::uniform_parameters`].
     pub fn uniform_points_into(&self, out: &mut [Point]) {
         let count = out.len();
+        let Some(last) = count.checked_sub(1) else {
+            return;
+        };
         let spacing = UniformSpacing::new(self.curve.domain(), count);
+        // Every parameter but the last is `i · step + lo` (the last is `hi` itself).
+        let (lo, step) = (spacing.lo, spacing.step);
         let mut first = 0;
         for span in 0..self.starts.len() {
             // This span's parameters run up to the first one that reaches the next span (the
             // last span takes the rest): guessed from the spacing, then checked.
             let run = match self.starts.get(span + 1) {
-                None => count,
+                None => last,
                 Some(&next) => {
-                    let guess = ((next - spacing.lo) / spacing.step).floor();
+                    let guess = ((next - lo) / step).floor();
                     let mut index = if guess > 0.0 {
-                        (guess as usize).clamp(first, count)
+                        (guess as usize).clamp(first, last)
                     } else {
                         first
                     };
                     while index > first && spacing.parameter(index - 1) >= next {
                         index -= 1;
                     }
-                    while index < count && spacing.parameter(index) < next {
+                    while index < last && spacing.parameter(index) < next {
                         index += 1;
                     }
                     index
                 }
             };
+            // `i64` converts to a float in one instruction, `usize` does not (the values are
+            // the same: `i < 2^53`).
             self.dispatch(
                 span,
-                (first..run).map(|i| spacing.parameter(i)),
+                (first..run).map(|i| i as i64 as f64 * step + lo),
                 &mut out[first..run],
             );
             first = run;
         }
+        let end = spacing.parameter(last);
+        let span = self.locate(end, self.starts.len() - 1);
+        self.dispatch(span, std::iter::once(end), &mut out[last..]);
     }
 
     /// Runs the span's kernel ([`power_form_in_span`] or [`bernstein_form_in_span`])

@@ -4,10 +4,13 @@
 #![allow(clippy::unwrap_used)]
 
 mod closest;
+mod corpus;
 mod editing;
 mod envelope;
 mod evaluation;
+mod exact;
 mod generators;
+mod real_curves;
 mod reference;
 mod toolkit;
 
