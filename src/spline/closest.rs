@@ -115,6 +115,8 @@ pub struct ClosestPointSearch<'c> {
 struct PieceBox {
     lo: f64,
     hi: f64,
+    /// The knot span `m` whose polynomial the piece is.
+    span: usize,
     /// The parameter that stands for the piece's end: `hi`, or the float just below it when
     /// the curve jumps there (an interior knot of multiplicity `p + 1`), where the piece's end
     /// is the limit from the left and `s(hi)` the next piece's start.
@@ -194,6 +196,7 @@ impl<'c> ClosestPointSearch<'c> {
             pieces.push(PieceBox {
                 lo: start,
                 hi: end,
+                span,
                 end_parameter: if jumps { float_below(end) } else { end },
                 min,
                 max,
@@ -287,7 +290,7 @@ impl<'c> ClosestPointSearch<'c> {
                 ),
             }
         }
-        search.finish(self.curve, q, self.range.0)
+        search.finish(self.curve, q, self.range.0, &self.pieces)
     }
 }
 
@@ -347,6 +350,8 @@ struct Search {
     best: f64,
     /// [`Search::slack`] at the current `best` (recomputed when `best` falls).
     slack: f64,
+    /// The rounding allowance alone, `SQUARED_NOISE (size + √best)²`.
+    noise: f64,
     /// The smallest parameter among the kept candidates.
     best_parameter: f64,
     /// Parameters whose squared distance lay within the slack of the best when offered.
@@ -360,6 +365,7 @@ impl Search {
             size,
             best: f64::INFINITY,
             slack: f64::INFINITY,
+            noise: f64::INFINITY,
             best_parameter: f64::INFINITY,
             candidates: SmallVec::new(),
             halvings: 0,
@@ -368,11 +374,15 @@ impl Search {
 
     /// How far above the best squared distance a value still counts: the tie tolerance on
     /// the distance, plus the rounding allowance (kept in `slack`).
-    fn slack_at(&self) -> f64 {
+    fn slack_at(&self) -> (f64, f64) {
         let best = self.best.sqrt();
         let tolerance = CLOSEST_POINT_TOLERANCE * (self.size + best);
         let scale = self.size + best;
-        2.0 * best * tolerance + tolerance * tolerance + SQUARED_NOISE * scale * scale
+        let noise = SQUARED_NOISE * scale * scale;
+        (
+            2.0 * best * tolerance + tolerance * tolerance + noise,
+            noise,
+        )
     }
 
     /// Records the squared distance `value` at parameter `u`.
@@ -384,7 +394,7 @@ impl Search {
         let value = value.max(0.0);
         if value < self.best {
             self.best = value;
-            self.slack = self.slack_at();
+            (self.slack, self.noise) = self.slack_at();
             let limit = self.best + self.slack;
             self.candidates.retain(|&mut (_, v)| v <= limit);
             self.best_parameter = self
@@ -400,11 +410,13 @@ impl Search {
 
     /// Whether a part starting at parameter `from` with squared-distance lower bound `bound`
     /// can be left out: it cannot come within the slack of the best, or it cannot beat the
-    /// best and lies right of a tie already found (ties go to the smallest parameter).
+    /// best even allowing for the rounding noise of the bound and lies right of a tie already
+    /// found (ties go to the smallest parameter). Near the curve, where every part close to
+    /// the query is within the noise of the best, nothing is pruned as a tie: such a part may
+    /// hold a point much nearer than the best found so far.
     fn prunes(&self, bound: f64, from: f64) -> bool {
-        let slack = self.slack;
-        bound > self.best + slack
-            || (bound >= self.best - 0.5 * slack && from >= self.best_parameter)
+        bound > self.best + self.slack
+            || (bound >= self.best + self.noise && from >= self.best_parameter)
     }
 
     /// Searches one piece (module docs); `bezier` holds its `p + 1` homogeneous points.
@@ -499,30 +511,60 @@ impl Search {
         }
     }
 
-    /// The answer: the candidates measured with the curve evaluator, the smallest parameter
-    /// among those within the tolerance of the least distance.
-    fn finish(&self, curve: &Curve, q: Point, fallback: f64) -> ClosestPoint {
+    /// The answer: the candidates measured with the curve evaluator and polished (below), the
+    /// smallest parameter among those within the tolerance of the least distance.
+    ///
+    /// Polishing: the Bernstein values are only good to their rounding noise,
+    /// `√SQUARED_NOISE` (about `1.2e-7`) of the size in distance near the curve, so a query
+    /// that close may have many candidates that tie within the noise (a closed curve's seam
+    /// offers both ends). From each of the [`MAX_POLISHED`] nearest (measured), a safeguarded
+    /// Newton iteration on `g(u) = (s(u) - q) · s'(u)` within the candidate's pieces, with
+    /// exact derivatives, finds the nearest point there to the evaluator's precision.
+    fn finish(&self, curve: &Curve, q: Point, fallback: f64, pieces: &[PieceBox]) -> ClosestPoint {
         let limit = self.best + self.slack;
+        let measure = |u: f64, span: Option<usize>| {
+            let point = match span {
+                Some(span) => {
+                    let mut value = [[0.0; 3]; 1];
+                    curve.derivatives_in_span(span, u, &mut value);
+                    value[0]
+                }
+                None => curve.point_unchecked(u),
+            };
+            ClosestPoint {
+                parameter: u,
+                point,
+                distance: distance(point, q),
+            }
+        };
         let mut measured: SmallVec<[ClosestPoint; 8]> = self
             .candidates
             .iter()
             .filter(|&&(_, v)| v <= limit)
-            .map(|&(u, _)| {
-                let point = curve.point_unchecked(u);
-                ClosestPoint {
-                    parameter: u,
-                    point,
-                    distance: distance(point, q),
-                }
-            })
+            .map(|&(u, _)| measure(u, None))
             .collect();
         if measured.is_empty() {
-            let point = curve.point_unchecked(fallback);
-            measured.push(ClosestPoint {
-                parameter: fallback,
-                point,
-                distance: distance(point, q),
-            });
+            measured.push(measure(fallback, None));
+        }
+        measured.sort_by(|a, b| {
+            a.distance
+                .total_cmp(&b.distance)
+                .then(a.parameter.total_cmp(&b.parameter))
+        });
+        measured.dedup_by(|a, b| a.parameter == b.parameter);
+        let starts: SmallVec<[ClosestPoint; MAX_POLISHED]> =
+            measured.iter().take(MAX_POLISHED).copied().collect();
+        for start in starts {
+            // The pieces holding `u`: one, or two where it is a piece's end. A polished point
+            // counts only where it is nearer than its start.
+            let u = start.parameter;
+            let first = pieces.partition_point(|piece| piece.end_parameter < u);
+            for piece in pieces[first..].iter().take_while(|piece| piece.lo <= u) {
+                let polished = measure(polish(curve, q, u, piece), Some(piece.span));
+                if polished.distance < start.distance {
+                    measured.push(polished);
+                }
+            }
         }
         let least = measured
             .iter()
@@ -539,6 +581,56 @@ impl Search {
                 distance: 0.0,
             })
     }
+}
+
+/// Candidates polished at most per query (the nearest ones, measured).
+const MAX_POLISHED: usize = 4;
+
+/// Newton steps of one polish at most (bisection alone needs about 60).
+const MAX_POLISH_ITERATIONS: usize = 64;
+
+/// The parameter near `start` in `piece` where `|s(u) - q|` is least (locally): a safeguarded
+/// Newton iteration on `g(u) = (s(u) - q) · s'(u)`, `g' = |s'|² + (s(u) - q) · s''`, with the
+/// bracket `[a, b]` of the piece where `g` goes from negative to positive (the distance falls,
+/// then rises) shrunk at every step, and bisection when a step would leave it. Returns an end
+/// of the piece when the distance only grows into it.
+fn polish(curve: &Curve, q: Point, start: f64, piece: &PieceBox) -> f64 {
+    let (mut a, mut b) = (piece.lo, piece.end_parameter);
+    let mut u = start.clamp(a, b);
+    let mut derivatives = [[0.0; 3]; 3];
+    for _ in 0..MAX_POLISH_ITERATIONS {
+        curve.derivatives_in_span(piece.span, u, &mut derivatives);
+        let [point, first, second] = derivatives;
+        let gap: Point = std::array::from_fn(|c| point[c] - q[c]);
+        let g = dot(gap, first);
+        if g == 0.0 {
+            break;
+        }
+        if g > 0.0 {
+            b = u;
+        } else {
+            a = u;
+        }
+        if a >= b {
+            break;
+        }
+        let slope = dot(first, first) + dot(gap, second);
+        let newton = u - g / slope;
+        let next = if slope > 0.0 && newton > a && newton < b {
+            newton
+        } else {
+            0.5 * (a + b)
+        };
+        if next == u {
+            break;
+        }
+        u = next;
+    }
+    u
+}
+
+fn dot(a: Point, b: Point) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
 /// Fills `part` with the Bernstein coefficients of `N = |X - q W|²`, of `D = W²` (rational)

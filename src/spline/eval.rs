@@ -107,9 +107,9 @@ impl Curve {
         origin
     }
 
-    /// [`Curve::derivatives`] on knot span `span` (which holds `t`, or is the last non-empty
-    /// one for the domain's right end).
-    fn derivatives_in_span(&self, span: usize, t: f64, out: &mut [Point]) {
+    /// [`Curve::derivatives`] by the polynomial of knot span `span` (which holds `t`, or ends
+    /// at `t`: the limit from the left).
+    pub(crate) fn derivatives_in_span(&self, span: usize, t: f64, out: &mut [Point]) {
         let p = self.degree();
         let knots = self.knots();
         let order = out.len().saturating_sub(1);
