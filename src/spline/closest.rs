@@ -589,6 +589,10 @@ const MAX_POLISHED: usize = 4;
 /// Newton steps of one polish at most (bisection alone needs about 60).
 const MAX_POLISH_ITERATIONS: usize = 64;
 
+/// A polish stops after a step of at most this fraction of the piece's width (Newton's steps
+/// shrink quadratically: the next one would be below rounding).
+const POLISH_STEP_TOLERANCE: f64 = 1e-15;
+
 /// The parameter near `start` in `piece` where `|s(u) - q|` is least (locally): a safeguarded
 /// Newton iteration on `g(u) = (s(u) - q) · s'(u)`, `g' = |s'|² + (s(u) - q) · s''`, with the
 /// bracket `[a, b]` of the piece where `g` goes from negative to positive (the distance falls,
@@ -596,6 +600,7 @@ const MAX_POLISH_ITERATIONS: usize = 64;
 /// of the piece when the distance only grows into it.
 fn polish(curve: &Curve, q: Point, start: f64, piece: &PieceBox) -> f64 {
     let (mut a, mut b) = (piece.lo, piece.end_parameter);
+    let width = b - a;
     let mut u = start.clamp(a, b);
     let mut derivatives = [[0.0; 3]; 3];
     for _ in 0..MAX_POLISH_ITERATIONS {
@@ -621,10 +626,11 @@ fn polish(curve: &Curve, q: Point, start: f64, piece: &PieceBox) -> f64 {
         } else {
             0.5 * (a + b)
         };
-        if next == u {
+        let converged = (next - u).abs() <= POLISH_STEP_TOLERANCE * width;
+        u = next;
+        if converged {
             break;
         }
-        u = next;
     }
     u
 }

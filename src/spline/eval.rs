@@ -235,7 +235,9 @@ pub const POWER_FORM_MAX_DEGREE: usize = 3;
 /// span's first control point) and `p + 1` homogeneous coefficients of `A(t) = (w (C - O), w)`:
 ///
 /// * degree `<= POWER_FORM_MAX_DEGREE`: centred power form, `A = Σ_d α_d x^d` with
-///   `x = (t - c) · 2 / (u_{m+1} - u_m) ∈ [-1, 1]`, `c` the span's middle;
+///   `x = 2 (t - u_m) / (u_{m+1} - u_m) - 1 ∈ [-1, 1]` (centred on the span's middle, but
+///   computed from the knot: `t - u_m` is exact, a rounded middle would be off by a unit in
+///   the last place of `t`, much of a short span);
 /// * above: scaled Bézier points, `A = Σ_i C(p, i) B_i s^i (1 - s)^(p-i)` with
 ///   `s = (t - u_m) / (u_{m+1} - u_m) ∈ [0, 1]`.
 ///
@@ -259,7 +261,7 @@ pub struct BatchEvaluator<'c> {
     coefficients: Vec<[f64; 4]>,
 }
 
-/// A span's local variable `(t - offset) · factor` and origin `O`.
+/// A span's local variable `(t - offset) · factor` (less 1 in the power form) and origin `O`.
 #[derive(Debug, Clone, Copy)]
 struct LocalFrame {
     offset: f64,
@@ -324,7 +326,7 @@ impl<'c> BatchEvaluator<'c> {
                     alpha
                 }));
                 locals.push(LocalFrame {
-                    offset: left + 0.5 * width,
+                    offset: left,
                     factor: 2.0 / width,
                     origin,
                 });
@@ -611,7 +613,7 @@ fn from_local<const LANES: usize, const RATIONAL: bool>(acc: [f64; 4], origin: P
 }
 
 /// Evaluates `out[i] := s(t_i)` on one span in centred power form ([`BatchEvaluator`]):
-/// Horner's rule on `Σ_d α_d x^d`, `x = (t - offset) · factor ∈ [-1, 1]`, for the first `LANES`
+/// Horner's rule on `Σ_d α_d x^d`, `x = (t - offset) · factor - 1 ∈ [-1, 1]`, for the first `LANES`
 /// homogeneous coordinates (`x, y` or `x, y, z` when non-rational; all four when rational,
 /// then divided by `w`), then the origin added. `DEGREE` is the degree (at most
 /// [`POWER_FORM_MAX_DEGREE`]).
@@ -637,7 +639,7 @@ fn power_form_in_span<const LANES: usize, const RATIONAL: bool, const DEGREE: us
 ) {
     let c = &coefficients[..=DEGREE];
     for (t, o) in parameters.zip(out.iter_mut()) {
-        let x = (t - frame.offset) * frame.factor;
+        let x = multiply_add(t - frame.offset, frame.factor, -1.0);
         let mut acc = [0.0; 4];
         acc[..LANES].copy_from_slice(&c[DEGREE][..LANES]);
         for coefficient in c[..DEGREE].iter().rev() {

@@ -9,6 +9,7 @@ mod editing;
 mod envelope;
 mod evaluation;
 mod exact;
+mod exactness;
 mod generators;
 mod real_curves;
 mod reference;

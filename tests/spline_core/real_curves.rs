@@ -13,7 +13,7 @@ use knotshape::spline::{
 };
 
 use super::corpus::{self, RealCurve, split_mix};
-use super::exact::{Exact, Input, Judge, Verdict};
+use super::exact::{Exact, Input, Judge, Verdict, textbook};
 
 /// Parameters per curve form at most (the hardest first, see [`RealCurve::hard_parameters`]).
 const PARAMETERS_PER_CURVE: usize = 24;
@@ -162,12 +162,17 @@ fn evaluation_is_as_exact_as_de_boor() {
     failures.assert_none("evaluation");
 }
 
-/// Closest points to queries on the curve, just off it, far from it and (periodic curves)
-/// next to the seam: the answer's point is the curve's at the answer's parameter, and its
-/// distance is at most the distance to any of the hardest parameters' exact points and to
-/// every span's ends and middle (within the search's tie tolerance).
+/// Closest points to queries on the curve, just off it and far from it: the answer's point is
+/// the curve's at the answer's parameter, and its distance is at most the distance to the
+/// curve at any of the hardest parameters and at the ends and middle of up to
+/// [`SAMPLED_SPANS`] spans (within the search's tie tolerance).
 #[test]
 fn closest_points_are_never_farther_than_any_sample() {
+    /// Spans sampled per curve at most (spread evenly).
+    const SAMPLED_SPANS: usize = 32;
+    /// Curve points (the hardest parameters first) that queries are made from, each giving a
+    /// query on the curve, one `1e-9` of the size off it and one `1e-3` off it.
+    const QUERY_BASES: usize = 5;
     let mut failures = Failures::default();
     let mut queries = 0;
     for (index, real) in curves().iter().enumerate() {
@@ -175,17 +180,22 @@ fn closest_points_are_never_farther_than_any_sample() {
         let judge = Judge::new(&real.input());
         let size = judge.size();
         let search = ClosestPointSearch::new(&curve, None).unwrap();
-        // Samples: the hardest parameters and every span's ends and middle, exactly evaluated.
+        // Samples: the hardest parameters and every span's ends and middle, by the textbook
+        // de Boor (tests/spline_core/exact.rs) in f64.
         let mut samples: Vec<f64> = real.hard_parameters(PARAMETERS_PER_CURVE, index as u64);
         let p = real.degree;
-        for m in p..real.poles.len() {
+        let spans: Vec<usize> = (p..real.poles.len())
+            .filter(|&m| real.knots[m] < real.knots[m + 1])
+            .collect();
+        for &m in spans.iter().step_by(spans.len().div_ceil(SAMPLED_SPANS)) {
             let (a, b) = (real.knots[m], real.knots[m + 1]);
-            if a < b {
-                samples.extend([a, 0.5 * (a + b), b]);
-            }
+            samples.extend([a, 0.5 * (a + b), b]);
         }
-        let sample_points: Vec<[f64; 3]> =
-            samples.iter().map(|&t| judge.at(t, 0).value(0)).collect();
+        let input = real.input();
+        let sample_points: Vec<[f64; 3]> = samples
+            .iter()
+            .map(|&t| textbook(&input, t, 0).values[0])
+            .collect();
         let mut state = index as u64;
         let mut direction = || {
             let mut v = [0.0; 3];
@@ -197,7 +207,7 @@ fn closest_points_are_never_farther_than_any_sample() {
             v.map(|x| x / length)
         };
         let mut query_points = Vec::new();
-        for &base in sample_points.iter().take(8) {
+        for &base in sample_points.iter().take(QUERY_BASES) {
             query_points.push(base);
             let d = direction();
             query_points.push(std::array::from_fn(|c| base[c] + 1e-3 * size * d[c]));
@@ -370,8 +380,8 @@ fn to_segment(q: [f64; 3], a: [f64; 3], b: [f64; 3]) -> f64 {
 
 /// Certified polylines at `1e-4` of each curve's size: the parameters are increasing, hold
 /// every knot of the domain, their points (by the batch evaluator, as the service computes
-/// them) lie on the curve within the rule, and the exact curve between two vertices stays
-/// within the tolerance of their segment.
+/// them) lie on the curve within the rule, and the curve between two vertices stays within
+/// the tolerance of their segment (both checked on up to [`CHECKED`] segments per curve).
 #[test]
 fn certified_polylines_stay_within_the_tolerance() {
     /// Vertices judged exactly and segments sampled per curve at most (spread evenly).
@@ -390,6 +400,7 @@ fn certified_polylines_stay_within_the_tolerance() {
             continue;
         };
         vertices += parameters.len();
+        let input = real.input();
         let (lo, hi) = real.domain();
         failures.check(
             parameters.first() == Some(&lo)
@@ -416,8 +427,9 @@ fn certified_polylines_stay_within_the_tolerance() {
                 format!("{}: vertex at {a} off the curve: {verdict:?}", real.id)
             });
             for fraction in [0.25, 0.5, 0.75] {
+                // The textbook de Boor suffices here: its error is far below the tolerance.
                 let u = a + fraction * (b - a);
-                let on_curve = judge.at(u, 0).value(0);
+                let on_curve = textbook(&input, u, 0).values[0];
                 let gap = to_segment(on_curve, points[i], points[i + 1]);
                 failures.check(gap <= tolerance * (1.0 + 1e-9), || {
                     format!(
