@@ -2,7 +2,9 @@
 //! control points (the size of the peer comparison in the README), and how the cost grows from
 //! 10 to 10,000 control points. Before timing, every answer on the 60-pole curve is checked
 //! against brute force (200,001 samples plus golden-section refinement), and the number of
-//! answers worse than brute force is printed: it must be 0.
+//! answers worse than brute force is printed: it must be 0. Then the 60-pole curve, the same
+//! curve refined to 10,000 control points and a random 10,000-pole curve are timed in
+//! interleaved rounds of the same run and the ratios are printed.
 #![allow(clippy::unwrap_used)]
 
 use std::hint::black_box;
@@ -113,6 +115,52 @@ fn bench_closest(c: &mut Criterion) {
     eprintln!("closest point, 60 poles: {wrong} of {QUERIES} answers worse than brute force");
     assert_eq!(wrong, 0);
 
+    // Growth with the size, in one run: the best of interleaved rounds of the 2,000 queries on
+    // the 60-pole curve, on the same curve with knots inserted up to 10,000 control points
+    // (the same shape in 9,997 pieces: a large curve as CAD files hold them), and on a random
+    // 10,000-pole curve (a scribble 167 times as long in the same square: the curve near a
+    // query, which any exact search must look at, grows with it). The refined curve's answers
+    // must be the 60-pole curve's.
+    let inserted: Vec<f64> = (1..=10_000 - 60).map(|i| i as f64 / 9_941.0).collect();
+    let refined = sixty.insert_knots(&inserted, usize::MAX).unwrap();
+    assert_eq!(refined.control_points().len(), 10_000);
+    let refined_search = ClosestPointSearch::new(&refined, None).unwrap();
+    let differing = points
+        .iter()
+        .filter(|&&q| {
+            let (a, b) = (search.closest(q), refined_search.closest(q));
+            (a.distance - b.distance).abs() > 1e-12 * (1.0 + a.distance)
+        })
+        .count();
+    eprintln!(
+        "closest point, 60 poles refined to 10,000: {differing} of {QUERIES} distances differ"
+    );
+    assert_eq!(differing, 0);
+    let scribble = curve(10_000, &mut rng);
+    let scribble_search = ClosestPointSearch::new(&scribble, None).unwrap();
+    let mut best = [f64::INFINITY; 3];
+    for _ in 0..15 {
+        for (slot, search) in best
+            .iter_mut()
+            .zip([&search, &refined_search, &scribble_search])
+        {
+            let start = std::time::Instant::now();
+            for &q in &points {
+                black_box(search.closest(black_box(q)));
+            }
+            *slot = slot.min(start.elapsed().as_secs_f64());
+        }
+    }
+    let per_query = |seconds: f64| seconds / QUERIES as f64 * 1e6;
+    eprintln!(
+        "closest point per query, best of 15 interleaved rounds: 60 poles {:.2} µs; refined to 10,000 poles {:.2} µs ({:.2} times); random 10,000 poles {:.2} µs ({:.1} times)",
+        per_query(best[0]),
+        per_query(best[1]),
+        best[1] / best[0],
+        per_query(best[2]),
+        best[2] / best[0],
+    );
+
     let mut group = c.benchmark_group("closest_point");
     group.measurement_time(Duration::from_secs(4));
     group.throughput(Throughput::Elements(QUERIES as u64));
@@ -125,6 +173,13 @@ fn bench_closest(c: &mut Criterion) {
     });
     group.bench_function("pieces_60_poles", |b| {
         b.iter(|| ClosestPointSearch::new(black_box(&sixty), None).unwrap())
+    });
+    group.bench_function("query_60_poles_refined_to_10000", |b| {
+        b.iter(|| {
+            for &q in &points {
+                black_box(refined_search.closest(black_box(q)));
+            }
+        })
     });
     for count in [10, 100, 1_000, 10_000] {
         let scaled = curve(count, &mut rng);

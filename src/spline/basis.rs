@@ -56,6 +56,34 @@ pub(crate) fn basis_functions(
     }
 }
 
+/// The non-zero basis functions of every degree `j = 0..=p` on span `m`:
+/// `out[j][r] = N_{m-j+r}^{j+1}(t)` for `r = 0..=j` (the rows of A2.2's triangle, kept).
+///
+/// Every term is a product of non-negative factors for `t` in the span, so each value is
+/// accurate to a few units in the last place. Same precondition as [`basis_functions`].
+pub(crate) fn basis_functions_of_every_degree(
+    knots: &[f64],
+    degree: usize,
+    span: usize,
+    t: f64,
+    out: &mut [[f64; CAP]; CAP],
+) {
+    let mut left = [0.0; CAP];
+    let mut right = [0.0; CAP];
+    out[0][0] = 1.0;
+    for j in 1..=degree {
+        left[j] = t - knots[span + 1 - j];
+        right[j] = knots[span + j] - t;
+        let mut saved = 0.0;
+        for r in 0..j {
+            let temp = out[j - 1][r] / (right[r + 1] + left[j - r]);
+            out[j][r] = saved + right[r + 1] * temp;
+            saved = left[j - r] * temp;
+        }
+        out[j][j] = saved;
+    }
+}
+
 /// The non-zero basis functions on span `m` and their derivatives up to order `order <= p`
 /// (The NURBS Book, A2.3): `ders[k][r]` is the `k`-th derivative of `N_{m-p+r}^{p+1}` at `t`.
 ///

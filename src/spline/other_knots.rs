@@ -66,15 +66,31 @@ impl Curve {
         b: f64,
         out: &mut [[f64; 4]],
     ) {
+        let net = &self.homogeneous()[span - self.degree()..=span];
+        self.bezier_piece_of_net(knots, span, net, a, b, out);
+    }
+
+    /// [`Curve::bezier_piece_in_span`] for another net: `net` holds the `p + 1` homogeneous
+    /// points that stand for the control points `span - p ..= span` (e.g. the curve's own,
+    /// moved to a local origin: blossoming is affine invariant).
+    pub(crate) fn bezier_piece_of_net(
+        &self,
+        knots: &[f64],
+        span: usize,
+        net: &[[f64; 4]],
+        a: f64,
+        b: f64,
+        out: &mut [[f64; 4]],
+    ) {
         // Cubics (every shape request) get the blossoms written out.
         if self.degree() == 3 {
-            self.cubic_bezier_piece(knots, span, a, b, out);
+            Self::cubic_bezier_piece(knots, span, net, a, b, out);
         } else {
-            self.bezier_piece_of_any_degree(knots, span, a, b, out);
+            self.bezier_piece_of_any_degree(knots, span, net, a, b, out);
         }
     }
 
-    /// [`Curve::bezier_piece_in_span`] for a cubic, written out (the loops of
+    /// [`Curve::bezier_piece_of_net`] for a cubic, written out (the loops of
     /// [`Curve::bezier_piece_of_any_degree`] do not unroll). For knots `u` and the net `P_0 ..= P_3` of
     /// `span = s` (`P_i` the control point `s - 3 + i`), de Boor's levels with arguments
     /// `x, y, z` are
@@ -86,9 +102,15 @@ impl Curve {
     /// and `B_0 = f(a, a, a)`, `B_1 = f(a, a, b)`, `B_2 = f(a, b, b)`, `B_3 = f(b, b, b)`:
     /// 16 blends, sharing `Q(a)`, `Q(b)` and `R(a, a)`.
     #[inline(always)]
-    fn cubic_bezier_piece(&self, knots: &[f64], span: usize, a: f64, b: f64, out: &mut [[f64; 4]]) {
+    fn cubic_bezier_piece(
+        knots: &[f64],
+        span: usize,
+        net: &[[f64; 4]],
+        a: f64,
+        b: f64,
+        out: &mut [[f64; 4]],
+    ) {
         let u = &knots[span - 2..=span + 3]; // u[k] = u_{s-2+k}
-        let net = &self.homogeneous()[span - 3..=span];
         let blend = |from: [f64; 4], to: [f64; 4], weight: f64| -> [f64; 4] {
             std::array::from_fn(|c| multiply_add(weight, to[c] - from[c], from[c]))
         };
@@ -125,7 +147,7 @@ impl Curve {
         out[3] = level_3(&level_2(&q_b, b), b);
     }
 
-    /// [`Curve::bezier_piece_in_span`] for any degree.
+    /// [`Curve::bezier_piece_of_net`] for any degree.
     ///
     /// The blossoms share work: `S_k` is the net after `k` de Boor levels with argument `a`
     /// (`S_0` the net itself); `B_{p-k}` continues `S_k` with `p - k` levels of argument `b`.
@@ -134,6 +156,7 @@ impl Curve {
         &self,
         knots: &[f64],
         span: usize,
+        net: &[[f64; 4]],
         a: f64,
         b: f64,
         out: &mut [[f64; 4]],
@@ -165,7 +188,7 @@ impl Curve {
             }
         };
         let mut with_a = [[0.0; 4]; N];
-        with_a[..=p].copy_from_slice(&self.homogeneous()[span - p..=span]);
+        with_a[..=p].copy_from_slice(&net[..=p]);
         for k in 0..p + 1 {
             let mut blossom = with_a;
             for later in k + 1..p + 1 {

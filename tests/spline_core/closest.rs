@@ -113,6 +113,64 @@ proptest! {
             found.distance, found.parameter, brute, q, lo, hi, case.degree, case.control_points, case.weights, case.knots
         );
     }
+
+    /// Queries very near the curve, `10^-13` to `10^-5` of its size off a curve point (at a
+    /// random parameter, an end, just inside an end or just beside a knot), on curves that are half the time closed (the last control
+    /// point moved onto the first, so both ends meet at a seam): the answer is never farther
+    /// than that curve point, however small the distance.
+    #[test]
+    fn queries_very_near_the_curve_and_its_seam(
+        mut case in curve_case(CaseOptions { min_degree: 1, max_degree: 5, clamped: Some(true) }),
+        at in prop_oneof![Just(0.0), Just(1.0), Just(1e-9), Just(1.0 - 1e-9), 0.0..1.0f64],
+        next_to_knot in prop_oneof![Just(None), (0usize..64, -1e-7..1e-7f64).prop_map(Some)],
+        offset in prop::array::uniform3(-1.0..1.0f64),
+        exponent in -13i32..=-5,
+        closed in any::<bool>(),
+    ) {
+        if closed {
+            let first = case.control_points[0].clone();
+            *case.control_points.last_mut().unwrap() = first;
+            let first = case.reference.points[0];
+            *case.reference.points.last_mut().unwrap() = first;
+        }
+        let curve = case.curve();
+        let reference = &case.reference;
+        let (lo, hi) = reference.domain();
+        // A parameter just inside an end, or just beside a knot (which the search measures
+        // first, as piece ends), is where a near tie used to hide the nearer point.
+        let knots: Vec<f64> = reference.knots.iter().copied().filter(|&u| lo <= u && u <= hi).collect();
+        let t = match next_to_knot {
+            Some((pick, shift)) => (knots[pick % knots.len()] + shift * (hi - lo)).clamp(lo, hi),
+            None => lo + at * (hi - lo),
+        };
+        let base = reference.point(t);
+        let size = reference.point_scale();
+        let planar = case.control_points[0].len() == 2;
+        let q: P3 = std::array::from_fn(|c| {
+            if planar && c == 2 { 0.0 } else { base[c] + 10f64.powi(exponent) * size * offset[c] }
+        });
+        let found = ClosestPointSearch::new(&curve, None).unwrap().closest(q);
+        let near = dist(base, q);
+        // Ties as the search defines them (within the tolerance of the control points'
+        // bounding-box diagonal), and the two evaluators' rounding (a few units in the last
+        // place of the coordinates: a closed curve of two equal control points is one point).
+        let diagonal = {
+            let (mut min, mut max) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+            for d in &reference.points {
+                for c in 0..3 {
+                    min[c] = min[c].min(d[c]);
+                    max[c] = max[c].max(d[c]);
+                }
+            }
+            dist(min, max)
+        };
+        let rounding = 4.0 * (case.degree + 1) as f64 * f64::EPSILON * size;
+        prop_assert!(
+            found.distance <= near + CLOSEST_POINT_TOLERANCE * (diagonal + near) + rounding,
+            "found {:e} at {} but s({}) is {:e} away (closed: {})",
+            found.distance, found.parameter, t, near, closed
+        );
+    }
 }
 
 #[test]
@@ -294,4 +352,57 @@ fn a_range_restricts_the_search() {
     assert!(ClosestPointSearch::new(&c, Some((0.5, 0.4))).is_err());
     assert!(ClosestPointSearch::new(&c, Some((-0.5, 0.4))).is_err());
     assert!(ClosestPointSearch::new(&c, Some((0.1, f64::NAN))).is_err());
+}
+
+/// Issue 20's case: a closed cubic (first control point = last) and a query 9.27e-9 from the
+/// seam. The point at `u = 0.999999999914` is 2.98e-9 away, nearer than the seam itself; the
+/// Bernstein search alone cannot tell them apart (both are within its rounding noise), the
+/// polished candidates can.
+#[test]
+fn a_query_next_to_a_closed_curves_seam_finds_the_nearer_side() {
+    let points: [&[f64]; 11] = [
+        &[-1.5089046792388427, -0.31344828797400304, 4.592269136048317],
+        &[-3.550727542619967, 2.603869469707911, 4.641558531000271],
+        &[-4.2313642544501455, 4.800192177425679, 0.5099725533290709],
+        &[-0.8221294587351471, -3.170521055180673, -1.8928805606468782],
+        &[0.7369232588458896, -3.702311200854612, 0.7676050707760709],
+        &[-1.519620002350007, 1.590196259224177, -4.759968481226602],
+        &[3.344906864914716, 3.9026070492770213, 0.9173961043047782],
+        &[-2.2260637921172033, -4.910353229829091, -0.5284357605307672],
+        &[2.3575136812998707, -3.7794648033544878, 4.416596080576024],
+        &[-2.444843159710801, -2.3727167399762985, -2.9897975824993495],
+        &[-1.5089046792388427, -0.31344828797400304, 4.592269136048317],
+    ];
+    let knots = [
+        0.0,
+        0.0,
+        0.0,
+        0.0,
+        0.039410670198165465,
+        0.12763490421325163,
+        0.20394160510478776,
+        0.20394160510478776,
+        0.20394160510478776,
+        0.7603316025080157,
+        0.7670126857239229,
+        1.0,
+        1.0,
+        1.0,
+        1.0,
+    ];
+    let q = [-1.5089046799191852, -0.3134482874135482, 4.592269126820995];
+    let closed = curve(3, &points, &knots, None);
+    let reference = Reference {
+        degree: 3,
+        knots: knots.to_vec(),
+        points: points.iter().map(|p| [p[0], p[1], p[2]]).collect(),
+        weights: None,
+    };
+    let (u, d) = closest(&closed, q, None);
+    // The issue's numbers: the seam is 9.27e-9 away, the nearer side 2.98e-9.
+    assert!((dist(reference.point(0.0), q) - 9.27e-9).abs() < 1e-11);
+    assert!((dist(reference.point(0.999999999914), q) - 2.98e-9).abs() < 1e-11);
+    assert!(u > 0.99999999, "u = {u}, at distance {d:e}");
+    assert!(d <= 2.99e-9, "distance {d:e}");
+    assert!((dist(reference.point(u), q) - d).abs() < 1e-15);
 }

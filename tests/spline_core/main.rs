@@ -4,11 +4,15 @@
 #![allow(clippy::unwrap_used)]
 
 mod closest;
+mod corpus;
 mod editing;
 mod envelope;
 mod evaluation;
+mod exact;
+mod exactness;
 mod generators;
 mod periodic;
+mod real_curves;
 mod reference;
 mod toolkit;
 
