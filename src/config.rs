@@ -67,6 +67,10 @@ pub struct Config {
     #[arg(long, env = "KNOTSHAPE_MAX_POLYGON_VERTICES", default_value_t = Limits::DEFAULT.max_polygon_vertices, global = true)]
     pub max_polygon_vertices: usize,
 
+    /// Largest number of `points` per interpolate or approximate request (more: 422).
+    #[arg(long, env = "KNOTSHAPE_MAX_FIT_POINTS", default_value_t = Limits::DEFAULT.max_fit_points, global = true)]
+    pub max_fit_points: usize,
+
     /// Time a request may take, in milliseconds, before it is answered with 503.
     #[arg(
         long,
@@ -183,6 +187,7 @@ impl Default for Config {
             max_parameters: Limits::DEFAULT.max_parameters,
             max_derivative_order: Limits::DEFAULT.max_derivative_order,
             max_polygon_vertices: Limits::DEFAULT.max_polygon_vertices,
+            max_fit_points: Limits::DEFAULT.max_fit_points,
             request_timeout_ms: 10_000,
             concurrency_limit: 64,
             retry_after_secs: 1,
@@ -207,6 +212,7 @@ impl Config {
             max_parameters: self.max_parameters,
             max_derivative_order: self.max_derivative_order,
             max_polygon_vertices: self.max_polygon_vertices,
+            max_fit_points: self.max_fit_points,
         }
     }
 
@@ -309,17 +315,20 @@ pub struct Limits {
     pub max_derivative_order: usize,
     /// Vertices per region polygon.
     pub max_polygon_vertices: usize,
+    /// Points per interpolate or approximate request.
+    pub max_fit_points: usize,
 }
 
 impl Limits {
     /// The defaults: 1 MiB bodies, 10 000 control points, 10 000 parameters, derivatives up to
-    /// order 8, 2 000 vertices per polygon.
+    /// order 8, 2 000 vertices per polygon, 10 000 points to fit.
     pub const DEFAULT: Limits = Limits {
         max_body_bytes: 1024 * 1024,
         max_control_points: 10_000,
         max_parameters: 10_000,
         max_derivative_order: 8,
         max_polygon_vertices: 2_000,
+        max_fit_points: 10_000,
     };
 }
 

@@ -39,6 +39,7 @@ use utoipa_axum::routes;
 use crate::config::Config;
 use error::{FieldError, PROBLEM_JSON, Problem};
 use routes::{closest, curves, editor, ops, shape, toolkit};
+use routes::{from_points, length, reshape};
 pub use server::{Server, shutdown_signal};
 pub use state::{AppState, Readiness};
 
@@ -104,6 +105,13 @@ fn v1_routes() -> OpenApiRouter<AppState> {
         .routes(routes!(closest::closest_point))
         .routes(routes!(toolkit::insert_knots))
         .routes(routes!(toolkit::bezier))
+        // The curve toolkit of the third release.
+        .routes(routes!(from_points::interpolate))
+        .routes(routes!(from_points::approximate))
+        .routes(routes!(reshape::elevate_degree))
+        .routes(routes!(reshape::remove_knots))
+        .routes(routes!(reshape::split))
+        .routes(routes!(length::length))
         .routes(routes!(shape::membership))
         .routes(routes!(shape::regions))
         .routes(routes!(shape::solve))
@@ -175,7 +183,7 @@ pub fn openapi_json() -> String {
             length; answers use the caller's convention."
     ),
     tags(
-        (name = "curves", description = "Curve evaluation, polylines, knot insertion, Bézier pieces and the knot-moving envelope"),
+        (name = "curves", description = "Curve evaluation, polylines, knot insertion, Bézier pieces and the knot-moving envelope; curves through and near points, degree elevation, knot removal, splitting, arc length and curvature"),
         (name = "shape", description = "Shape modification of cubic curves by knot pairs Ω1–Ω6 (Tornai; Juhász & Hoffmann)"),
         (name = "operations", description = "Probes, metrics and this document; never need the API key"),
     ),

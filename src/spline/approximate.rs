@@ -63,6 +63,9 @@ const MIN_TANGENTIAL_WEIGHT: f64 = 1e-6;
 /// fraction.
 const STALL_FRACTION: f64 = 1e-4;
 
+/// Gauss–Newton passes of a local refit after a removal at most.
+const LOCAL_REFIT_PASSES: usize = 3;
+
 /// Reduction rounds (removal, then refit) at most.
 const MAX_REDUCTION_ROUNDS: usize = 16;
 
@@ -153,16 +156,9 @@ impl Fitter<'_> {
         )
     }
 
-    /// Step 1: the least-squares poles for `knots` at `parameters`; `None` when the normal
-    /// equations are singular (a pole no point constrains).
-    ///
-    /// With `tangents` (unit tangents of the previous curve at the points), the squared
-    /// distance of point `k` is weighted as `|e|² − (1 − μ) (e · T_k)²` (the distance to the
-    /// tangent line plus `μ` times the tangential part): a
-    /// Gauss–Newton step of the point-to-curve distance (Wang, Pottmann & Liu 2006, "tangent
-    /// distance minimization", regularised), which lets the curve slide along itself instead
-    /// of dragging every point to its old parameter. The coordinates then couple: the
-    /// unknowns are interleaved, `d` per pole, in a band of width `d (p + 1)`.
+    /// Step 1: the least-squares poles for `knots` at `parameters` (the ends fixed at the end
+    /// points when they are exact); `None` when the normal equations are singular (a pole no
+    /// point constrains). See [`Fitter::solve_free_poles`] for `tangents` and the weight.
     fn least_squares(
         &self,
         knots: &[f64],
@@ -171,69 +167,98 @@ impl Fitter<'_> {
         tangential_weight: f64,
     ) -> Option<Vec<Point>> {
         let p = self.p;
-        let points = self.points;
-        let d = self.dimension.count();
-        let m = points.len();
+        let m = self.points.len();
         let count = knots.len() - p - 1;
-        let n = count - 1;
-        let (first_unknown, unknowns) = if self.ends_exact {
-            (1, count.saturating_sub(2))
-        } else {
-            (0, count)
-        };
         let mut poles = vec![[0.0; 3]; count];
-        if self.ends_exact {
-            poles[0] = points[0];
-            poles[n] = points[m - 1];
-        }
+        let (free, rows): (std::ops::Range<usize>, Vec<usize>) = if self.ends_exact {
+            poles[0] = self.points[0];
+            poles[count - 1] = self.points[m - 1];
+            (1..count - 1, (1..m - 1).collect())
+        } else {
+            (0..count, (0..m).collect())
+        };
+        self.solve_free_poles(
+            knots,
+            &mut poles,
+            free,
+            &rows,
+            parameters,
+            tangents,
+            tangential_weight,
+        )
+        .then_some(poles)
+    }
+
+    /// Least squares for the poles `free` of the curve with `knots` and `poles` (the others
+    /// fixed, their part subtracted from the points), over the points `rows` at their
+    /// `parameters`; writes them into `poles` and returns whether the normal equations were
+    /// regular and the result finite.
+    ///
+    /// With `tangents` (unit tangents of the previous curve at the points), the squared
+    /// distance of point `k` is weighted as `|e|² − (1 − μ) (e · T_k)²` (the distance to the
+    /// tangent line plus `μ` times the tangential part): a Gauss–Newton step of the
+    /// point-to-curve distance (Wang, Pottmann & Liu 2006, "tangent distance minimization",
+    /// regularised), which lets the curve slide along itself instead of dragging every point
+    /// to its old parameter. The coordinates then couple: the unknowns are interleaved, `d`
+    /// per pole, in a band of width `d (p + 1)`.
+    #[allow(clippy::too_many_arguments)]
+    fn solve_free_poles(
+        &self,
+        knots: &[f64],
+        poles: &mut [Point],
+        free: std::ops::Range<usize>,
+        rows: &[usize],
+        parameters: &[f64],
+        tangents: Option<&[Point]>,
+        tangential_weight: f64,
+    ) -> bool {
+        let p = self.p;
+        let d = self.dimension.count();
+        let unknowns = free.len();
         if unknowns == 0 {
-            return Some(poles);
+            return true;
         }
-        let rows = if self.ends_exact { 1..m - 1 } else { 0..m };
         let mut normal = SymmetricBandedMatrix::zeros(unknowns * d, (p + 1) * d - 1);
         let mut rhs = vec![0.0; unknowns * d];
         let mut basis = [0.0; CAP];
-        for k in rows {
+        for &k in rows {
             let t = parameters[k];
             let span = find_span(knots, p, t);
             basis_functions(knots, p, span, t, &mut basis);
-            let mut residual = points[k];
-            if self.ends_exact {
-                for (i, &value) in basis.iter().enumerate().take(p + 1) {
-                    let column = span - p + i;
-                    if column == 0 || column == n {
-                        for c in 0..3 {
-                            residual[c] -= value * poles[column][c];
-                        }
+            let mut residual = self.points[k];
+            for (i, &value) in basis.iter().enumerate().take(p + 1) {
+                let column = span - p + i;
+                if !free.contains(&column) {
+                    for c in 0..3 {
+                        residual[c] -= value * poles[column][c];
                     }
                 }
             }
             // The weight matrix M = I − (1 − μ) T Tᵀ.
-            let mut weight = [[0.0; 3]; 3];
             let tangent = tangents.map_or([0.0; 3], |all| all[k]);
-            for (r, row) in weight.iter_mut().enumerate() {
-                for (c, value) in row.iter_mut().enumerate() {
+            let weight: [[f64; 3]; 3] = std::array::from_fn(|r| {
+                std::array::from_fn(|c| {
                     let identity = if r == c { 1.0 } else { 0.0 };
-                    *value = identity - (1.0 - tangential_weight) * tangent[r] * tangent[c];
-                }
-            }
+                    identity - (1.0 - tangential_weight) * tangent[r] * tangent[c]
+                })
+            });
             let weighted: [f64; 3] =
                 std::array::from_fn(|r| (0..3).map(|c| weight[r][c] * residual[c]).sum());
             for (i, &a) in basis.iter().enumerate().take(p + 1) {
                 let column = span - p + i;
-                if column < first_unknown || column - first_unknown >= unknowns || a == 0.0 {
+                if !free.contains(&column) || a == 0.0 {
                     continue;
                 }
-                let row = column - first_unknown;
+                let row = column - free.start;
                 for c in 0..d {
                     rhs[row * d + c] += a * weighted[c];
                 }
                 for (j, &b) in basis.iter().enumerate().take(i + 1) {
                     let other = span - p + j;
-                    if other < first_unknown || b == 0.0 {
+                    if !free.contains(&other) || b == 0.0 {
                         continue;
                     }
-                    let other = other - first_unknown;
+                    let other = other - free.start;
                     for r in 0..d {
                         let columns = if other == row { r + 1 } else { d };
                         for c in 0..columns {
@@ -243,17 +268,18 @@ impl Fitter<'_> {
                 }
             }
         }
-        normal.factor_cholesky().ok()?;
+        if normal.factor_cholesky().is_err() {
+            return false;
+        }
         normal.solve(&mut rhs, 1);
+        if rhs.iter().any(|v| !v.is_finite()) {
+            return false;
+        }
         for (index, chunk) in rhs.chunks_exact(d).enumerate() {
-            let mut pole = [0.0; 3];
+            let pole = &mut poles[free.start + index];
             pole[..d].copy_from_slice(chunk);
-            poles[index + first_unknown] = pole;
         }
-        if poles.iter().flatten().any(|v| !v.is_finite()) {
-            return None;
-        }
-        Some(poles)
+        true
     }
 
     /// Step 2 on one point: Newton's method from `t` towards the foot of `q`, each step kept
@@ -382,13 +408,13 @@ impl Fitter<'_> {
     /// Step 3: a knot between the middle parameters of each span holding a point farther
     /// than the target (the span's midpoint when they coincide); empty when no span can be
     /// split.
-    fn refinements(&self, fit: &Fit) -> Vec<f64> {
+    fn refinements(&self, fit: &Fit, parameters: &[f64]) -> Vec<f64> {
         let knots = &fit.knots;
         let p = self.p;
         let mut breaks: Vec<f64> = knots[p..knots.len() - p].to_vec();
         breaks.dedup();
-        let mut by_parameter: Vec<usize> = (0..fit.parameters.len()).collect();
-        by_parameter.sort_by(|&a, &b| fit.parameters[a].total_cmp(&fit.parameters[b]));
+        let mut by_parameter: Vec<usize> = (0..parameters.len()).collect();
+        by_parameter.sort_by(|&a, &b| parameters[a].total_cmp(&parameters[b]));
         let mut inserted = Vec::new();
         let mut start = 0;
         for (span, window) in breaks.windows(2).enumerate() {
@@ -396,7 +422,7 @@ impl Fitter<'_> {
             let last_span = span + 2 == breaks.len();
             let end = start
                 + by_parameter[start..].partition_point(|&k| {
-                    let t = fit.parameters[k];
+                    let t = parameters[k];
                     t < b || (last_span && t <= b)
                 });
             let members = &by_parameter[start..end];
@@ -406,7 +432,7 @@ impl Fitter<'_> {
             }
             let inside: Vec<f64> = members
                 .iter()
-                .map(|&k| fit.parameters[k])
+                .map(|&k| parameters[k])
                 .filter(|&t| a < t && t < b)
                 .collect();
             let half = inside.len() / 2;
@@ -427,8 +453,11 @@ impl Fitter<'_> {
     }
 
     /// Step 4's removal round: tries every interior knot, the cheapest first, on the current
-    /// curve, keeping a removal when each point whose parameter lies where the curve changed
-    /// stays within the target. Returns whether any knot went.
+    /// curve. A removal is kept when each point where the curve changed stays within the
+    /// target, first as the removal leaves the curve, else after a local refit: the poles
+    /// the removal changed and one more on each side move by [`LOCAL_REFIT_PASSES`]
+    /// Gauss–Newton passes over those points (the other poles fixed, so the curve elsewhere
+    /// stays as it is). Returns whether any knot went.
     fn removal_round(&self, fit: &mut Fit) -> bool {
         let p = self.p;
         let mut homogeneous: Vec<[f64; 4]> = fit
@@ -449,9 +478,7 @@ impl Fitter<'_> {
         candidates.sort_by(|a, b| a.0.total_cmp(&b.0));
         let mut by_parameter: Vec<usize> = (0..fit.parameters.len()).collect();
         by_parameter.sort_by(|&a, &b| fit.parameters[a].total_cmp(&fit.parameters[b]));
-        let sorted: Vec<f64> = by_parameter.iter().map(|&k| fit.parameters[k]).collect();
         let mut removed_any = false;
-        let mut trial_errors: Vec<(usize, f64)> = Vec::new();
         for (_, value) in candidates {
             let (r, s) = knot_run(&knots, value);
             if s == 0 {
@@ -463,29 +490,45 @@ impl Fitter<'_> {
             let mut trial_knots = knots.clone();
             let mut trial_points = homogeneous.clone();
             apply_removal(&mut trial_knots, &mut trial_points, &removal);
-            let window = local_window(p, &trial_knots, &trial_points, removal.first, removal.points.len());
-            let (from, to) = removal.changed;
-            let first = sorted.partition_point(|&t| t < from);
-            let last = sorted.partition_point(|&t| t <= to);
-            trial_errors.clear();
-            let mut within = true;
-            for &k in &by_parameter[first..last] {
-                let t = fit.parameters[k].clamp(window.domain().0, window.domain().1);
-                let e = distance(window.point_unchecked(t), self.points[k]);
-                if !(e <= self.target) {
-                    within = false;
-                    break;
-                }
-                trial_errors.push((k, e));
-            }
-            if !within {
+            let count = trial_points.len();
+            // Free poles: the changed ones and one more on each side (never a fixed end).
+            let lowest_free = usize::from(self.ends_exact);
+            let highest_free = count - 1 - usize::from(self.ends_exact);
+            let free_start = removal.first.saturating_sub(1).max(lowest_free);
+            let free_end = (removal.first + removal.points.len()).min(highest_free);
+            if free_start > free_end {
                 continue;
+            }
+            let window_start = free_start.saturating_sub(p);
+            let window_end = (free_end + p).min(count - 1);
+            let window_knots = &trial_knots[window_start..=window_end + p + 1];
+            let (from, to) = (window_knots[p], window_knots[window_knots.len() - p - 1]);
+            let first = by_parameter.partition_point(|&k| fit.parameters[k] < from);
+            let last = by_parameter.partition_point(|&k| fit.parameters[k] <= to);
+            let rows: Vec<usize> = by_parameter[first..last].to_vec();
+            let mut window_poles: Vec<Point> = trial_points[window_start..=window_end]
+                .iter()
+                .map(|h| [h[0], h[1], h[2]])
+                .collect();
+            let free = free_start - window_start..free_end - window_start + 1;
+            let Some(local) =
+                self.local_refit(window_knots, &mut window_poles, free, &rows, fit)
+            else {
+                continue;
+            };
+            // Accepted: the window's poles into the curve, the rows' parameters and errors.
+            for (offset, pole) in window_poles.iter().enumerate() {
+                trial_points[window_start + offset] = [pole[0], pole[1], pole[2], 1.0];
             }
             knots = trial_knots;
             homogeneous = trial_points;
-            for &(k, e) in &trial_errors {
+            for (&k, (t, e, tangent)) in rows.iter().zip(local) {
+                fit.parameters[k] = t;
                 fit.errors[k] = e;
+                fit.tangents[k] = tangent;
             }
+            by_parameter[first..last]
+                .sort_by(|&a, &b| fit.parameters[a].total_cmp(&fit.parameters[b]));
             removed_any = true;
         }
         if removed_any {
@@ -494,33 +537,69 @@ impl Fitter<'_> {
         }
         removed_any
     }
-}
 
-/// The part of a non-rational curve around the changed points `first .. first + len`: its
-/// control points `first − p ..= first + len − 1 + p` (clipped) with their knots, a valid
-/// curve whose domain is where the changed points act (and that agrees with the whole curve
-/// there).
-fn local_window(
-    p: usize,
-    knots: &[f64],
-    points: &[[f64; 4]],
-    first: usize,
-    len: usize,
-) -> Curve {
-    let low = first.saturating_sub(p);
-    let high = (first + len - 1 + p).min(points.len() - 1);
-    let poles: Vec<Point> = points[low..=high]
-        .iter()
-        .map(|h| [h[0], h[1], h[2]])
-        .collect();
-    Curve::from_valid_parts(
-        p,
-        Dimension::Three,
-        poles,
-        None,
-        knots[low..=high + p + 1].to_vec(),
-        KnotConvention::Full,
-    )
+    /// The check of a removal on the window curve (`knots`, `poles`): first as it is, then
+    /// after up to [`LOCAL_REFIT_PASSES`] refits of the `free` poles. `Some` (each row's
+    /// corrected parameter, distance and tangent) when every row is within the target.
+    fn local_refit(
+        &self,
+        knots: &[f64],
+        poles: &mut [Point],
+        free: std::ops::Range<usize>,
+        rows: &[usize],
+        fit: &Fit,
+    ) -> Option<Vec<(f64, f64, Point)>> {
+        let mut parameters = fit.parameters.clone();
+        let mut tangents = fit.tangents.clone();
+        let mut weight = INITIAL_TANGENTIAL_WEIGHT;
+        for pass in 0..=LOCAL_REFIT_PASSES {
+            if pass > 0 {
+                let mut trial = poles.to_vec();
+                if !self.solve_free_poles(
+                    knots,
+                    &mut trial,
+                    free.clone(),
+                    rows,
+                    &parameters,
+                    Some(&tangents),
+                    weight,
+                ) {
+                    return None;
+                }
+                poles.copy_from_slice(&trial);
+                weight = (weight * 0.1).max(MIN_TANGENTIAL_WEIGHT);
+            }
+            let curve = Curve::from_valid_parts(
+                self.p,
+                Dimension::Three,
+                poles.to_vec(),
+                None,
+                knots.to_vec(),
+                KnotConvention::Full,
+            );
+            let m = self.points.len();
+            let mut within = true;
+            let mut results = Vec::with_capacity(rows.len());
+            for &k in rows {
+                let fixed = self.ends_exact && (k == 0 || k == m - 1);
+                let start = parameters[k].clamp(curve.domain().0, curve.domain().1);
+                let (t, e, tangent) = if fixed {
+                    let e = distance(curve.point_unchecked(start), self.points[k]);
+                    (start, e, tangents[k])
+                } else {
+                    self.correct(&curve, self.points[k], start)
+                };
+                within &= e <= self.target;
+                parameters[k] = t;
+                tangents[k] = tangent;
+                results.push((t, e, tangent));
+            }
+            if within {
+                return Some(results);
+            }
+        }
+        None
+    }
 }
 
 /// The curve of degree `spec.degree` within `spec.tolerance` of every point, with as few
@@ -607,22 +686,21 @@ fn refine(fitter: &Fitter<'_>, parameters: &[f64], max_poles: usize) -> Option<F
     let m = fitter.points.len();
     let mut knots = vec![0.0; p + 1];
     knots.extend(std::iter::repeat_n(1.0, p + 1));
-    let mut start = parameters.to_vec();
-    let mut tangents: Option<Vec<Point>> = None;
     for _round in 0..MAX_REFINEMENT_ROUNDS {
-        let fit = fitter.fit(knots.clone(), &start, tangents.as_deref(), true)?;
+        // Each round starts from the points' own parameters: the feet on a poor curve are a
+        // poor parametrization, and the knots go between the points' own parameters.
+        let fit = fitter.fit(knots.clone(), parameters, None, true)?;
+        if std::env::var("PROBE").is_ok() { eprintln!("round poles {} max {:e} target {:e}", fit.poles.len(), fit.max_error(), fitter.target); }
         if fit.max_error() <= fitter.target {
             return Some(fit);
         }
-        let inserted = fitter.refinements(&fit);
+        let inserted = fitter.refinements(&fit, parameters);
         let poles = knots.len() - p - 1 + inserted.len();
         if inserted.is_empty() || poles >= m || poles > max_poles {
             return None;
         }
         knots.extend_from_slice(&inserted);
         knots.sort_by(f64::total_cmp);
-        start = fit.parameters;
-        tangents = Some(fit.tangents);
     }
     None
 }

@@ -6,6 +6,10 @@ pub mod editor;
 pub mod ops;
 pub mod shape;
 pub mod toolkit;
+// The curve toolkit of the third release.
+pub mod from_points;
+pub mod length;
+pub mod reshape;
 
 use axum::Extension;
 

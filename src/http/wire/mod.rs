@@ -7,3 +7,8 @@ pub mod methods;
 pub mod shape_answer;
 pub mod shape_request;
 pub mod toolkit;
+// The curve toolkit of the third release.
+pub mod from_points;
+pub mod length;
+pub mod reshape;
+pub mod toolkit_parse;
