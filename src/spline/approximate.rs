@@ -22,8 +22,10 @@
 //!    distances at the points' parameters (upper bounds of the true distances) are within
 //!    the target, so the certified error is too.
 //!
-//! If refinement cannot reach the target (spans too small to split, or as many poles as
-//! points), the curve interpolating every point is the answer (distance 0 at the points).
+//! If refinement cannot reach the target (spans too small to split, as many poles as
+//! points, or a fit so nearly singular that its poles swing far from the points), the
+//! reduction starts instead from the curve interpolating every point (distance 0 at the
+//! points), which is within any tolerance.
 
 use super::banded::SymmetricBandedMatrix;
 use super::basis::{CAP, MAX_DEGREE, basis_functions, find_span};
@@ -47,7 +49,7 @@ const ROUNDING_MARGIN: f64 = 1e-12;
 const MAX_REFINEMENT_ROUNDS: usize = 64;
 
 /// Gauss–Newton passes per fit at most.
-const MAX_CORRECTION_PASSES: usize = 16;
+const MAX_CORRECTION_PASSES: usize = 24;
 
 /// Newton steps per point and correction pass.
 const NEWTON_STEPS: usize = 4;
@@ -56,12 +58,20 @@ const NEWTON_STEPS: usize = 4;
 /// the module docs; 1 is plain least squares at the parameters).
 const INITIAL_TANGENTIAL_WEIGHT: f64 = 0.01;
 
+/// The factor by which `μ` falls after a good pass and rises after a bad one.
+const WEIGHT_STEP: f64 = 3.0;
+
 /// The smallest `μ` (which keeps the normal equations positive definite).
 const MIN_TANGENTIAL_WEIGHT: f64 = 1e-6;
 
 /// The passes of a fit stop when the sum of squared distances falls by less than this
 /// fraction.
 const STALL_FRACTION: f64 = 1e-4;
+
+/// A fit whose poles stray farther than this many times the points' size from their centre
+/// is refused as wild (a nearly singular least-squares system: the curve may meet the points
+/// yet swing far out between them), as if singular.
+const WILD_REACH: f64 = 10.0;
 
 /// Gauss–Newton passes of a local refit after a removal at most.
 const LOCAL_REFIT_PASSES: usize = 3;
@@ -121,6 +131,10 @@ struct Fitter<'a> {
     ends_exact: bool,
     dimension: Dimension,
     target: f64,
+    /// The centre of the points' bounding box and the radius ([`WILD_REACH`] times its
+    /// diagonal) beyond which a fitted pole counts as wild.
+    centre: Point,
+    reach: f64,
 }
 
 /// A fitted curve with each point's parameter and distance at that parameter.
@@ -278,6 +292,9 @@ impl Fitter<'_> {
         for (index, chunk) in rhs.chunks_exact(d).enumerate() {
             let pole = &mut poles[free.start + index];
             pole[..d].copy_from_slice(chunk);
+            if distance(*pole, self.centre) > self.reach {
+                return false;
+            }
         }
         true
     }
@@ -355,8 +372,8 @@ impl Fitter<'_> {
 
     /// Steps 1–2: a fit, then Gauss–Newton passes (tangent-weighted fits at the corrected
     /// parameters, [`Fitter::least_squares`]) with Levenberg–Marquardt control of `μ`: a
-    /// pass that lowers the sum of squared distances is kept and `μ` shrinks tenfold, one
-    /// that does not is dropped and `μ` grows tenfold; the passes stop at
+    /// pass that lowers the sum of squared distances is kept and `μ` shrinks threefold, one
+    /// that does not is dropped and `μ` grows threefold; the passes stop at
     /// [`MAX_CORRECTION_PASSES`], when the sum improves by less than [`STALL_FRACTION`],
     /// when `μ` would exceed 1, or (with `stop_at_target`) once every point is within the
     /// target. Returns the pass with the smallest largest error; `None` when the first fit
@@ -389,13 +406,13 @@ impl Fitter<'_> {
                         best = trial.clone();
                     }
                     current = trial;
-                    weight = (weight * 0.1).max(MIN_TANGENTIAL_WEIGHT);
+                    weight = (weight / WEIGHT_STEP).max(MIN_TANGENTIAL_WEIGHT);
                     if after > (1.0 - STALL_FRACTION) * before {
                         break;
                     }
                 }
                 _ => {
-                    weight *= 10.0;
+                    weight *= WEIGHT_STEP;
                     if weight > 1.0 {
                         break;
                     }
@@ -654,14 +671,16 @@ pub fn approximate(
         ends_exact: spec.end_points_exact,
         dimension: points.dimension(),
         target: tolerance - ROUNDING_MARGIN * magnitude,
+        centre: points.centre(),
+        reach: WILD_REACH * points.size(),
     };
-    let fit = refine(&fitter, &parameters, limits.max_control_points)
-        .map(|fit| reduce(&fitter, fit));
-    let curve = match fit {
-        Some(fit) => fitter.curve(fit.knots, fit.poles),
-        None => interpolate_all(points, spec, limits)?,
+    let start = match refine(&fitter, &parameters, limits.max_control_points) {
+        Some(fit) => fit,
+        None => interpolant_fit(&fitter, points, spec, limits)?,
     };
-    let (max_error, closest) = certify(&curve, points.points());
+    let fit = reduce(&fitter, start);
+    let curve = fitter.curve(fit.knots.clone(), fit.poles.clone());
+    let (max_error, closest) = certify(&curve, points.points(), &fit);
     if max_error <= tolerance {
         return Ok(Approximation {
             curve,
@@ -670,8 +689,9 @@ pub fn approximate(
         });
     }
     // Not reached: every accepted curve is within the target at the points' parameters.
-    let curve = interpolate_all(points, spec, limits)?;
-    let (max_error, closest) = certify(&curve, points.points());
+    let fit = interpolant_fit(&fitter, points, spec, limits)?;
+    let curve = fitter.curve(fit.knots.clone(), fit.poles.clone());
+    let (max_error, closest) = certify(&curve, points.points(), &fit);
     Ok(Approximation {
         curve,
         max_error,
@@ -690,7 +710,6 @@ fn refine(fitter: &Fitter<'_>, parameters: &[f64], max_poles: usize) -> Option<F
         // Each round starts from the points' own parameters: the feet on a poor curve are a
         // poor parametrization, and the knots go between the points' own parameters.
         let fit = fitter.fit(knots.clone(), parameters, None, true)?;
-        if std::env::var("PROBE").is_ok() { eprintln!("round poles {} max {:e} target {:e}", fit.poles.len(), fit.max_error(), fitter.target); }
         if fit.max_error() <= fitter.target {
             return Some(fit);
         }
@@ -719,15 +738,19 @@ fn reduce(fitter: &Fitter<'_>, mut fit: Fit) -> Fit {
     fit
 }
 
-/// The curve through every point (distinct consecutive points; a lower degree elevated back
-/// when fewer distinct points remain than `p + 1`), the fallback of the module docs.
-fn interpolate_all(
+/// The curve through every point as a fit (distance 0 at its parameters), the start of the
+/// reduction when refinement cannot reach the target (module docs): distinct consecutive
+/// points interpolated (a lower degree elevated back when fewer than `p + 1` remain), each
+/// repeated point at the parameter of the one it repeats.
+fn interpolant_fit(
+    fitter: &Fitter<'_>,
     points: &PointSet,
     spec: &ApproximationSpec,
     limits: &CurveLimits,
-) -> Result<Curve, ApproximationError> {
+) -> Result<Fit, ApproximationError> {
     let threshold = COINCIDENT_POINT_TOLERANCE * points.size();
     let mut distinct: Vec<Point> = Vec::with_capacity(points.len());
+    let mut owner = Vec::with_capacity(points.len());
     for &point in points.points() {
         if distinct
             .last()
@@ -735,6 +758,7 @@ fn interpolate_all(
         {
             distinct.push(point);
         }
+        owner.push(distinct.len() - 1);
     }
     let dimension = points.dimension().count();
     let raw: Vec<&[f64]> = distinct.iter().map(|point| &point[..dimension]).collect();
@@ -757,30 +781,40 @@ fn interpolate_all(
         }
         _ => ApproximationError::NonFiniteResult,
     })?;
-    let curve = interpolation.curve;
-    if degree == spec.degree {
-        return Ok(curve);
+    let mut curve = interpolation.curve;
+    if degree < spec.degree {
+        curve = curve
+            .elevate_degree(spec.degree, limits.max_degree, limits.max_control_points)
+            .map_err(|_| ApproximationError::TooManyControlPoints {
+                max: limits.max_control_points,
+            })?;
     }
-    curve
-        .elevate_degree(spec.degree, limits.max_degree, limits.max_control_points)
-        .map_err(|_| ApproximationError::TooManyControlPoints {
-            max: limits.max_control_points,
-        })
+    let parameters: Vec<f64> = owner.iter().map(|&i| interpolation.parameters[i]).collect();
+    let fit = fitter.corrected(curve.knots(), curve.control_points().to_vec(), &parameters);
+    Ok(fit)
 }
 
-/// Step 5: each point's closest parameter and distance by the closest-point search; the
-/// largest distance.
-fn certify(curve: &Curve, points: &[Point]) -> (f64, Vec<f64>) {
+/// Step 5: each point's distance to the curve by the closest-point search (the global
+/// minimum), and the parameter there; where the search's bounded work ends above the
+/// distance at the fit's own parameter (possible on wild curves), the fit's. The largest
+/// distance.
+fn certify(curve: &Curve, points: &[Point], fit: &Fit) -> (f64, Vec<f64>) {
     let Ok(search) = ClosestPointSearch::new(curve, None) else {
-        return (f64::INFINITY, Vec::new());
+        return (fit.max_error(), fit.parameters.clone());
     };
     let mut max_error = 0.0f64;
     let parameters = points
         .iter()
-        .map(|&q| {
+        .enumerate()
+        .map(|(k, &q)| {
             let closest = search.closest(q);
-            max_error = max_error.max(closest.distance);
-            closest.parameter
+            let (parameter, found) = if closest.distance <= fit.errors[k] {
+                (closest.parameter, closest.distance)
+            } else {
+                (fit.parameters[k], fit.errors[k])
+            };
+            max_error = max_error.max(found);
+            parameter
         })
         .collect();
     (max_error, parameters)

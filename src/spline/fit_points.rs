@@ -190,6 +190,19 @@ impl PointSet {
         self.size
     }
 
+    /// The centre of the points' bounding box.
+    pub fn centre(&self) -> Point {
+        let mut low = [f64::INFINITY; 3];
+        let mut high = [f64::NEG_INFINITY; 3];
+        for point in &self.points {
+            for c in 0..3 {
+                low[c] = low[c].min(point[c]);
+                high[c] = high[c].max(point[c]);
+            }
+        }
+        std::array::from_fn(|c| 0.5 * (low[c] + high[c]))
+    }
+
     /// The largest coordinate magnitude.
     pub fn magnitude(&self) -> f64 {
         self.points

@@ -302,14 +302,12 @@ fn planar(mut points: Vec<Point>, dimension: Dimension) -> Vec<Point> {
 /// `m + t >= p + 1`.
 pub fn averaged_knots(parameters: &[f64], p: usize, tangents: [bool; 2]) -> Vec<f64> {
     let m = parameters.len();
+    let given = tangents.iter().filter(|&&t| t).count();
+    let interior = (m + given).saturating_sub(p + 1);
     let first_window = usize::from(!tangents[0]);
-    let last_window = (m + usize::from(tangents[1])).saturating_sub(p + 1);
     let (lo, hi) = (parameters[0], parameters[m - 1]);
     let mut knots = vec![lo; p + 1];
-    for j in first_window..=last_window {
-        if j + p > m {
-            break;
-        }
+    for j in first_window..first_window + interior {
         let sum: f64 = parameters[j..j + p].iter().sum();
         knots.push(sum / p as f64);
     }

@@ -10,6 +10,11 @@ mod evaluation;
 mod generators;
 mod reference;
 mod toolkit;
+// Curves from points and the rest of the toolkit (third release).
+mod approximation;
+mod dense;
+mod interpolation;
+mod point_sets;
 
 use proptest::test_runner::Config;
 
