@@ -8,9 +8,9 @@
 //! `P_i = α_i Q_i + (1 − α_i) Q_{i−1}`, `α_i = (ū − v_i) / (v_{i+p} − v_i)`, `i = r−p … r−s`,
 //!
 //! with `Q_i = P_i` for `i <= r−p−1` and `Q_i = P_{i+1}` for `i >= r−s`: `p − s + 1`
-//! equations for the `p − s` points in between. They are solved from both ends towards the
-//! middle (dividing by `α_i` on the left, by `1 − α_i` on the right, where each is large),
-//! and the two values met in the middle are averaged. The knot is exactly removable when they
+//! equations for the `p − s` points in between. They are solved from both ends (dividing by
+//! `α_i` from the left while `α_i >= 1/2`, by `1 − α_i` from the right where it is smaller,
+//! so that each step at most doubles rounding), and the two values met are averaged. The knot is exactly removable when they
 //! agree; otherwise the curve moves, and by how much is bounded by inserting `ū` again:
 //! the new curve is then written on `U` with points `P'`, and the difference of the two
 //! curves is the spline with points `P − P'` (non-zero only for `i = r−p−1 … r−s+1`), so
@@ -82,7 +82,10 @@ pub(crate) fn local_removal(
     let v = |j: usize| if j < r { knots[j] } else { knots[j + 1] };
     let alpha = |i: usize| (value - v(i)) / (v(i + p) - v(i));
     let len = last - first + 1;
-    let middle = first + (len - 1) / 2;
+    // α_i falls from near 1 to near 0 along the chain: the left sweep (dividing by α_i) runs
+    // while α_i >= 1/2, the right one (dividing by 1 − α_i) where it is below, so that no
+    // step amplifies rounding more than twice, even next to a multiple knot.
+    let middle = first + (first + 1..=last).take_while(|&i| alpha(i) >= 0.5).count();
     let mut q: SmallVec<[[f64; 4]; CAP + 1]> = SmallVec::from_elem([0.0; 4], len);
     q[0] = points[first];
     for i in first + 1..=middle {

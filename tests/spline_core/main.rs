@@ -15,6 +15,8 @@ mod approximation;
 mod dense;
 mod interpolation;
 mod point_sets;
+mod measures;
+mod reshaping;
 
 use proptest::test_runner::Config;
 
