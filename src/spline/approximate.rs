@@ -118,7 +118,9 @@ pub enum ApproximationError {
         "tolerance {tolerance} is below the smallest these points allow, {floor:e} ({APPROXIMATION_TOLERANCE_FLOOR:e} times their largest coordinate magnitude): double precision cannot certify it"
     )]
     ToleranceBelowFloor { tolerance: f64, floor: f64 },
-    #[error("the tolerance needs more than {max} control points for these points; give a larger tolerance")]
+    #[error(
+        "the tolerance needs more than {max} control points for these points; give a larger tolerance"
+    )]
     TooManyControlPoints { max: usize },
     #[error("the result is not finite: the points are too extreme for double precision")]
     NonFiniteResult,
@@ -273,10 +275,10 @@ impl Fitter<'_> {
                         continue;
                     }
                     let other = other - free.start;
-                    for r in 0..d {
+                    for (r, weights) in weight.iter().enumerate().take(d) {
                         let columns = if other == row { r + 1 } else { d };
-                        for c in 0..columns {
-                            normal.add_lower(row * d + r, other * d + c, a * b * weight[r][c]);
+                        for (c, &w) in weights.iter().enumerate().take(columns) {
+                            normal.add_lower(row * d + r, other * d + c, a * b * w);
                         }
                     }
                 }
@@ -314,8 +316,9 @@ impl Fitter<'_> {
             }
             let [c, d1, d2] = derivatives;
             let offset = [c[0] - q[0], c[1] - q[1], c[2] - q[2]];
-            let found = (offset[0] * offset[0] + offset[1] * offset[1] + offset[2] * offset[2]).sqrt();
-            if !(found < best.1) {
+            let found =
+                (offset[0] * offset[0] + offset[1] * offset[1] + offset[2] * offset[2]).sqrt();
+            if found.is_nan() || found >= best.1 {
                 break;
             }
             best = (u, found);
@@ -329,11 +332,8 @@ impl Fitter<'_> {
                 break;
             }
             let f = offset[0] * d1[0] + offset[1] * d1[1] + offset[2] * d1[2];
-            let slope = speed * speed
-                + offset[0] * d2[0]
-                + offset[1] * d2[1]
-                + offset[2] * d2[2];
-            if !(slope > 0.0) {
+            let slope = speed * speed + offset[0] * d2[0] + offset[1] * d2[1] + offset[2] * d2[2];
+            if slope.is_nan() || slope <= 0.0 {
                 break;
             }
             let next = (u - f / slope).clamp(lo, hi);
@@ -357,10 +357,10 @@ impl Fitter<'_> {
             errors: vec![0.0; m],
             tangents: vec![[0.0; 3]; m],
         };
-        for k in 0..m {
-            let (t, e, tangent) = self.correct(&curve, self.points[k], parameters[k]);
+        for (k, (&q, &start)) in self.points.iter().zip(parameters).enumerate() {
+            let (t, e, tangent) = self.correct(&curve, q, start);
             if self.ends_exact && (k == 0 || k == m - 1) {
-                fit.errors[k] = distance(curve.point_unchecked(parameters[k]), self.points[k]);
+                fit.errors[k] = distance(curve.point_unchecked(start), q);
             } else {
                 (fit.parameters[k], fit.errors[k]) = (t, e);
             }
@@ -528,8 +528,7 @@ impl Fitter<'_> {
                 .map(|h| [h[0], h[1], h[2]])
                 .collect();
             let free = free_start - window_start..free_end - window_start + 1;
-            let Some(local) =
-                self.local_refit(window_knots, &mut window_poles, free, &rows, fit)
+            let Some(local) = self.local_refit(window_knots, &mut window_poles, free, &rows, fit)
             else {
                 continue;
             };
@@ -730,7 +729,12 @@ fn reduce(fitter: &Fitter<'_>, mut fit: Fit) -> Fit {
         if !fitter.removal_round(&mut fit) {
             break;
         }
-        match fitter.fit(fit.knots.clone(), &fit.parameters, Some(&fit.tangents), false) {
+        match fitter.fit(
+            fit.knots.clone(),
+            &fit.parameters,
+            Some(&fit.tangents),
+            false,
+        ) {
             Some(refit) if refit.max_error() <= fitter.target => fit = refit,
             _ => {}
         }

@@ -62,7 +62,10 @@ impl BandedMatrix {
     }
 
     fn offset(&self, row: usize, column: usize) -> usize {
-        debug_assert!(self.in_band(row, column), "({row}, {column}) outside the band");
+        debug_assert!(
+            self.in_band(row, column),
+            "({row}, {column}) outside the band"
+        );
         row * self.width() + column + self.lower - row
     }
 
@@ -92,7 +95,7 @@ impl BandedMatrix {
         let n = self.size;
         for k in 0..n {
             let pivot = self.get(k, k);
-            if !(pivot.abs() > PIVOT_FLOOR * self.row_scale[k]) {
+            if pivot.is_nan() || pivot.abs() <= PIVOT_FLOOR * self.row_scale[k] {
                 return Err(SingularSystem { row: k });
             }
             let last_row = (k + self.lower).min(n - 1);
@@ -204,7 +207,7 @@ impl SymmetricBandedMatrix {
                 let l = self.entries[self.offset(k, j)];
                 pivot -= l * l;
             }
-            if !(pivot > PIVOT_FLOOR * diagonal.abs()) || !pivot.is_finite() {
+            if !pivot.is_finite() || pivot <= PIVOT_FLOOR * diagonal.abs() {
                 return Err(SingularSystem { row: k });
             }
             let root = pivot.sqrt();
@@ -323,9 +326,8 @@ impl BorderedSystem {
                 }
             }
         }
-        solve_dense(&mut schur, k, border_rhs, columns).map_err(|e| SingularSystem {
-            row: n + e.row,
-        })?;
+        solve_dense(&mut schur, k, border_rhs, columns)
+            .map_err(|e| SingularSystem { row: n + e.row })?;
         // x_I = y − Z x_B.
         for i in 0..n {
             for c in 0..columns {
@@ -354,7 +356,7 @@ pub fn solve_dense(
             .map(|i| (i, a[i * size + k]))
             .max_by(|x, y| x.1.abs().total_cmp(&y.1.abs()))
             .unwrap_or((k, 0.0));
-        if !(pivot.abs() > PIVOT_FLOOR * scale) {
+        if pivot.is_nan() || pivot.abs() <= PIVOT_FLOOR * scale {
             return Err(SingularSystem { row: k });
         }
         if pivot_row != k {
@@ -501,9 +503,7 @@ mod tests {
         system.border_border[0] = entry(0, 0);
         let mut interior_rhs = b[1..].to_vec();
         let mut border_rhs = vec![b[0]];
-        system
-            .solve(&mut interior_rhs, &mut border_rhs, 1)
-            .unwrap();
+        system.solve(&mut interior_rhs, &mut border_rhs, 1).unwrap();
         assert!((border_rhs[0] - x[0]).abs() < 1e-13);
         for (found, expected) in interior_rhs.iter().zip(&x[1..]) {
             assert!((found - expected).abs() < 1e-13);

@@ -35,7 +35,7 @@ impl Curve {
                 let speed = (d1[0] * d1[0] + d1[1] * d1[1] + d1[2] * d1[2]).sqrt();
                 let span = self.span(t);
                 let scale = p * size / (knots[span + 1] - knots[span]);
-                if !(speed > CURVATURE_TANGENT_FLOOR * scale) {
+                if speed.is_nan() || speed <= CURVATURE_TANGENT_FLOOR * scale {
                     return Ok(None);
                 }
                 let cubed = speed * speed * speed;

@@ -42,10 +42,7 @@ impl Curve {
     ) -> Result<Curve, ElevateError> {
         let p = self.degree();
         if degree <= p {
-            return Err(ElevateError::NotHigher {
-                degree,
-                current: p,
-            });
+            return Err(ElevateError::NotHigher { degree, current: p });
         }
         let max = max_degree.min(MAX_DEGREE);
         if degree > max {

@@ -97,12 +97,11 @@ impl PointsError {
                 index: 0,
                 coordinate: None,
             },
-            PointsError::WrongDimension { index, .. } | PointsError::CoincidentPoints { index, .. } => {
-                PointsField::Point {
-                    index,
-                    coordinate: None,
-                }
-            }
+            PointsError::WrongDimension { index, .. }
+            | PointsError::CoincidentPoints { index, .. } => PointsField::Point {
+                index,
+                coordinate: None,
+            },
             PointsError::NonFiniteCoordinate { index, coordinate } => PointsField::Point {
                 index,
                 coordinate: Some(coordinate),
@@ -340,7 +339,9 @@ mod tests {
     #[test]
     fn chord_length_parameters_follow_the_distances() {
         let points = set(&[[0.0, 0.0], [3.0, 4.0], [3.0, 9.0], [3.0, 19.0]]);
-        let t = points.parameters(Parametrization::ChordLength, false).unwrap();
+        let t = points
+            .parameters(Parametrization::ChordLength, false)
+            .unwrap();
         assert_eq!(t, vec![0.0, 0.25, 0.5, 1.0]);
         let closed = points.parameters(Parametrization::Uniform, true).unwrap();
         assert_eq!(closed, vec![0.0, 0.25, 0.5, 0.75, 1.0]);

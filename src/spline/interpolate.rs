@@ -232,10 +232,16 @@ pub fn interpolate(
         ),
         Some(given) => {
             let zeros = vec![[0.0; 3]; count];
-            let template = Curve::new(p, &zeros, given, None, &CurveLimits {
-                max_degree,
-                max_control_points: limits.max_control_points,
-            })
+            let template = Curve::new(
+                p,
+                &zeros,
+                given,
+                None,
+                &CurveLimits {
+                    max_degree,
+                    max_control_points: limits.max_control_points,
+                },
+            )
             .map_err(InterpolationError::Knots)?;
             let domain = template.domain();
             if let ParameterChoice::By(_) = spec.parameters {
@@ -259,16 +265,10 @@ pub fn interpolate(
             (template.knots().to_vec(), template.convention())
         }
     };
-    let control_points = solve_open(
-        points.points(),
-        &parameters,
-        &knots,
-        p,
-        spec.end_tangents,
-    )
-    .map_err(|_| InterpolationError::Singular {
-        given_knots: spec.knots.is_some(),
-    })?;
+    let control_points = solve_open(points.points(), &parameters, &knots, p, spec.end_tangents)
+        .map_err(|_| InterpolationError::Singular {
+            given_knots: spec.knots.is_some(),
+        })?;
     if control_points.iter().flatten().any(|v| !v.is_finite()) {
         return Err(InterpolationError::NonFiniteResult);
     }

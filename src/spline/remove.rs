@@ -8,9 +8,10 @@
 //! `P_i = α_i Q_i + (1 − α_i) Q_{i−1}`, `α_i = (ū − v_i) / (v_{i+p} − v_i)`, `i = r−p … r−s`,
 //!
 //! with `Q_i = P_i` for `i <= r−p−1` and `Q_i = P_{i+1}` for `i >= r−s`: `p − s + 1`
-//! equations for the `p − s` points in between. They are solved from both ends (dividing by
-//! `α_i` from the left while `α_i >= 1/2`, by `1 − α_i` from the right where it is smaller,
-//! so that each step at most doubles rounding), and the two values met are averaged. The knot is exactly removable when they
+//! equations for the `p − s` points in between. They are solved from both ends towards the
+//! middle (dividing by `α_i` from the left, by `1 − α_i` from the right; the meeting point
+//! moves off the middle where one of them would be below 1/4), and the two values met are
+//! averaged. The knot is exactly removable when they
 //! agree; otherwise the curve moves, and by how much is bounded by inserting `ū` again:
 //! the new curve is then written on `U` with points `P'`, and the difference of the two
 //! curves is the spline with points `P − P'` (non-zero only for `i = r−p−1 … r−s+1`), so
@@ -82,10 +83,14 @@ pub(crate) fn local_removal(
     let v = |j: usize| if j < r { knots[j] } else { knots[j + 1] };
     let alpha = |i: usize| (value - v(i)) / (v(i + p) - v(i));
     let len = last - first + 1;
-    // α_i falls from near 1 to near 0 along the chain: the left sweep (dividing by α_i) runs
-    // while α_i >= 1/2, the right one (dividing by 1 − α_i) where it is below, so that no
-    // step amplifies rounding more than twice, even next to a multiple knot.
-    let middle = first + (first + 1..=last).take_while(|&i| alpha(i) >= 0.5).count();
+    // The sweeps meet in the middle of the chain (the change spreads over the interior, and
+    // the ends of a clamped curve stay), but α_i falls from near 1 to near 0 along it: the
+    // left sweep (dividing by α_i) may only cross equations with α_i >= 1/4, the right one
+    // (dividing by 1 − α_i) those with α_i <= 3/4, so that a step at most triples the
+    // rounding it inherits, even next to a multiple knot.
+    let stable_left = (first + 1..=last).take_while(|&i| alpha(i) >= 0.25).count();
+    let needs_left = (first + 1..=last).take_while(|&i| alpha(i) > 0.75).count();
+    let middle = first + ((len - 1) / 2).clamp(needs_left, stable_left);
     let mut q: SmallVec<[[f64; 4]; CAP + 1]> = SmallVec::from_elem([0.0; 4], len);
     q[0] = points[first];
     for i in first + 1..=middle {
@@ -110,7 +115,9 @@ pub(crate) fn local_removal(
         from_right = points[last + 1];
     }
     q[middle - first] = std::array::from_fn(|c| 0.5 * (from_left[c] + from_right[c]));
-    if q.iter().any(|h| h.iter().any(|x| !x.is_finite()) || h[3] <= 0.0) {
+    if q.iter()
+        .any(|h| h.iter().any(|x| !x.is_finite()) || h[3] <= 0.0)
+    {
         return None;
     }
     // Insert ū again: P'_i for i = first ..= last + 1, compared with P_i.
@@ -205,7 +212,11 @@ fn rational_bound(
 }
 
 /// Applies a computed removal to the full knot vector and the homogeneous points.
-pub(crate) fn apply_removal(knots: &mut Vec<f64>, points: &mut Vec<[f64; 4]>, removal: &LocalRemoval) {
+pub(crate) fn apply_removal(
+    knots: &mut Vec<f64>,
+    points: &mut Vec<[f64; 4]>,
+    removal: &LocalRemoval,
+) {
     let end = removal.first + removal.points.len();
     points.splice(removal.first..=end, removal.points.iter().copied());
     knots.remove(removal.knot_index);
@@ -230,7 +241,10 @@ pub(crate) fn from_homogeneous(
             Some(homogeneous.iter().map(|h| h[3]).collect()),
         )
     } else {
-        (homogeneous.iter().map(|h| [h[0], h[1], h[2]]).collect(), None)
+        (
+            homogeneous.iter().map(|h| [h[0], h[1], h[2]]).collect(),
+            None,
+        )
     };
     Curve::from_valid_parts(degree, dimension, points, weights, knots, convention)
 }
@@ -341,7 +355,9 @@ impl Curve {
                     let Some(trial) = local_removal(p, &knots, &points, r, s, rational) else {
                         break;
                     };
-                    let first = breaks.partition_point(|&b| b <= trial.changed.0).saturating_sub(1);
+                    let first = breaks
+                        .partition_point(|&b| b <= trial.changed.0)
+                        .saturating_sub(1);
                     let last = breaks
                         .partition_point(|&b| b < trial.changed.1)
                         .min(span_bounds.len());
@@ -368,7 +384,8 @@ impl Curve {
         let direct = if removed.is_empty() {
             0.0
         } else {
-            self.direct_deviation(&curve, &removed).unwrap_or(f64::INFINITY)
+            self.direct_deviation(&curve, &removed)
+                .unwrap_or(f64::INFINITY)
         };
         Ok(KnotRemoval {
             curve,
@@ -378,7 +395,10 @@ impl Curve {
     }
 
     /// `(value, removals allowed)` for each distinct candidate, checked against the knots.
-    fn removal_budgets(&self, candidates: Option<&[f64]>) -> Result<Vec<(f64, usize)>, RemoveError> {
+    fn removal_budgets(
+        &self,
+        candidates: Option<&[f64]>,
+    ) -> Result<Vec<(f64, usize)>, RemoveError> {
         let (lo, hi) = self.domain();
         let knots = self.knots();
         let interior = |u: f64| lo < u && u < hi;
@@ -448,10 +468,7 @@ impl Curve {
     /// refinement does not apply).
     fn direct_deviation(&self, other: &Curve, removed: &[f64]) -> Option<f64> {
         let p = self.degree();
-        if removed
-            .iter()
-            .any(|&u| knot_run(self.knots(), u).1 > p)
-        {
+        if removed.iter().any(|&u| knot_run(self.knots(), u).1 > p) {
             return None;
         }
         let back = other.refined(removed);
@@ -464,12 +481,7 @@ impl Curve {
             return Some(
                 ours.iter()
                     .zip(theirs)
-                    .map(|(a, b)| {
-                        (0..3)
-                            .map(|c| (a[c] - b[c]).powi(2))
-                            .sum::<f64>()
-                            .sqrt()
-                    })
+                    .map(|(a, b)| (0..3).map(|c| (a[c] - b[c]).powi(2)).sum::<f64>().sqrt())
                     .fold(0.0, f64::max),
             );
         }

@@ -43,7 +43,11 @@ impl Curve {
     /// order of parameter (module docs). Each piece has the degree, dimension, weights and
     /// knot convention of the curve; its domain is `[a, b]` for consecutive split values.
     /// Rules: parameters finite and strictly inside the domain, at most `max_parameters`.
-    pub fn split_at(&self, parameters: &[f64], max_parameters: usize) -> Result<Vec<Curve>, SplitError> {
+    pub fn split_at(
+        &self,
+        parameters: &[f64],
+        max_parameters: usize,
+    ) -> Result<Vec<Curve>, SplitError> {
         if parameters.len() > max_parameters {
             return Err(SplitError::TooMany {
                 count: parameters.len(),

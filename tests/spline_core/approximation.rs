@@ -57,8 +57,16 @@ fn brute_force_distance(reference: &Reference, samples: &[(f64, P3)], q: P3) -> 
     let last = samples.len() - 1;
     let mut best = distances.iter().copied().fold(f64::INFINITY, f64::min);
     for i in 0..=last {
-        let before = if i > 0 { distances[i - 1] } else { f64::INFINITY };
-        let after = if i < last { distances[i + 1] } else { f64::INFINITY };
+        let before = if i > 0 {
+            distances[i - 1]
+        } else {
+            f64::INFINITY
+        };
+        let after = if i < last {
+            distances[i + 1]
+        } else {
+            f64::INFINITY
+        };
         if distances[i] <= before && distances[i] <= after {
             if i > 0 {
                 best = best.min(golden(samples[i - 1].0, samples[i].0));
@@ -115,15 +123,25 @@ fn check(
         largest = largest.max(brute);
         reported = reported.max(ours);
     }
-    prop_assert!(largest <= spec.tolerance * (1.0 + 1e-12), "{largest} > {}", spec.tolerance);
-    prop_assert!((reported - max_error).abs() <= DISTANCE_TOL * size, "{reported} vs {max_error}");
+    prop_assert!(
+        largest <= spec.tolerance * (1.0 + 1e-12),
+        "{largest} > {}",
+        spec.tolerance
+    );
+    prop_assert!(
+        (reported - max_error).abs() <= DISTANCE_TOL * size,
+        "{reported} vs {max_error}"
+    );
     if spec.end_points_exact {
         let (lo, hi) = reference.domain();
         let ends = [
             distance(reference.point(lo), points[0]),
             distance(reference.point(hi), points[points.len() - 1]),
         ];
-        prop_assert!(ends[0] <= 1e-12 * size.max(1.0) && ends[1] <= 1e-12 * size.max(1.0), "ends {ends:?}");
+        prop_assert!(
+            ends[0] <= 1e-12 * size.max(1.0) && ends[1] <= 1e-12 * size.max(1.0),
+            "ends {ends:?}"
+        );
     }
     Ok(largest)
 }
@@ -187,7 +205,11 @@ fn points_on_a_polynomial_of_the_degree_need_one_piece() {
             end_points_exact: true,
         };
         let answer = approximate(&set, &uniform, &CurveLimits::default()).unwrap();
-        assert_eq!(answer.curve.control_points().len(), degree + 1, "degree {degree}");
+        assert_eq!(
+            answer.curve.control_points().len(),
+            degree + 1,
+            "degree {degree}"
+        );
         assert!(answer.max_error <= 1e-9);
         if degree <= 3 {
             let chord = ApproximationSpec {
@@ -196,7 +218,11 @@ fn points_on_a_polynomial_of_the_degree_need_one_piece() {
                 ..uniform
             };
             let answer = approximate(&set, &chord, &CurveLimits::default()).unwrap();
-            assert_eq!(answer.curve.control_points().len(), degree + 1, "degree {degree}");
+            assert_eq!(
+                answer.curve.control_points().len(),
+                degree + 1,
+                "degree {degree}"
+            );
         }
     }
 }
@@ -224,7 +250,14 @@ fn a_dense_sampling_of_a_smooth_curve_needs_far_fewer_poles_than_points() {
     let answer = approximate(&set, &spec, &CurveLimits::default()).unwrap();
     let poles = answer.curve.control_points().len();
     assert!(poles <= 40, "{poles} poles");
-    check(&case, &spec, &answer.curve, answer.max_error, &answer.parameters).unwrap();
+    check(
+        &case,
+        &spec,
+        &answer.curve,
+        answer.max_error,
+        &answer.parameters,
+    )
+    .unwrap();
 }
 
 #[test]
@@ -239,7 +272,10 @@ fn bad_requests_are_refused() {
     let limits = CurveLimits::default();
     assert!(matches!(
         approximate(&set, &spec, &limits),
-        Err(ApproximationError::Points(PointsError::TooFewPoints { needed: 4, .. }))
+        Err(ApproximationError::Points(PointsError::TooFewPoints {
+            needed: 4,
+            ..
+        }))
     ));
     for tolerance in [0.0, -1.0, f64::NAN, f64::INFINITY] {
         let spec = ApproximationSpec {

@@ -13,13 +13,16 @@ pub fn solve(mut a: Vec<Vec<f64>>, mut b: Vec<Vec<f64>>) -> Option<Vec<Vec<f64>>
         }
         a.swap(k, pivot);
         b.swap(k, pivot);
-        for i in k + 1..n {
-            let factor = a[i][k] / a[k][k];
-            for j in k..n {
-                a[i][j] -= factor * a[k][j];
+        let (above, below) = a.split_at_mut(k + 1);
+        let (rhs_above, rhs_below) = b.split_at_mut(k + 1);
+        let (pivot_row, pivot_rhs) = (&above[k], &rhs_above[k]);
+        for (row, rhs) in below.iter_mut().zip(rhs_below.iter_mut()) {
+            let factor = row[k] / pivot_row[k];
+            for (value, &source) in row[k..].iter_mut().zip(&pivot_row[k..]) {
+                *value -= factor * source;
             }
-            for c in 0..b[i].len() {
-                b[i][c] -= factor * b[k][c];
+            for (value, &source) in rhs.iter_mut().zip(pivot_rhs) {
+                *value -= factor * source;
             }
         }
     }

@@ -7,8 +7,8 @@
 //! is `C^{p−1}` across its seam (derivatives from both sides).
 
 use knotshape::spline::{
-    CurveLimits, InterpolationError, InterpolationSpec, ParameterChoice, Parametrization,
-    PointSet, PointsError, interpolate,
+    CurveLimits, InterpolationError, InterpolationSpec, ParameterChoice, Parametrization, PointSet,
+    PointsError, interpolate,
 };
 use proptest::prelude::*;
 use serde_json::Value;
@@ -36,10 +36,7 @@ fn distance(a: P3, b: P3) -> f64 {
 }
 
 fn magnitude(points: &[P3]) -> f64 {
-    points
-        .iter()
-        .flatten()
-        .fold(1.0f64, |m, v| m.max(v.abs()))
+    points.iter().flatten().fold(1.0f64, |m, v| m.max(v.abs()))
 }
 
 /// The test's own parameters: chord length, centripetal or uniform on `[0, 1]`, with the
@@ -350,17 +347,28 @@ fn scipy_make_interp_spline_builds_the_same_curves() {
         let set = PointSet::new(&points, 1000).unwrap();
         let interpolation = interpolate(&set, &spec, &CurveLimits::default()).unwrap();
         let numbers = |v: &Value| -> Vec<f64> { serde_json::from_value(v.clone()).unwrap() };
-        for (ours, theirs) in interpolation.parameters.iter().zip(numbers(&case["parameters"])) {
+        for (ours, theirs) in interpolation
+            .parameters
+            .iter()
+            .zip(numbers(&case["parameters"]))
+        {
             assert!((ours - theirs).abs() < 1e-15, "{name}: parameter");
         }
         let knots = numbers(&case["knots"]);
         assert_eq!(interpolation.curve.knots().len(), knots.len(), "{name}");
         for (ours, theirs) in interpolation.curve.knots().iter().zip(&knots) {
-            assert!((ours - theirs).abs() < 1e-14, "{name}: knot {ours} vs {theirs}");
+            assert!(
+                (ours - theirs).abs() < 1e-14,
+                "{name}: knot {ours} vs {theirs}"
+            );
         }
         let theirs: Vec<Vec<f64>> = serde_json::from_value(case["control_points"].clone()).unwrap();
         let scale = theirs.iter().flatten().fold(1.0f64, |m, v| m.max(v.abs()));
-        assert_eq!(interpolation.curve.control_points().len(), theirs.len(), "{name}");
+        assert_eq!(
+            interpolation.curve.control_points().len(),
+            theirs.len(),
+            "{name}"
+        );
         for (ours, theirs) in interpolation.curve.control_points().iter().zip(&theirs) {
             for (c, value) in theirs.iter().enumerate() {
                 assert!(
@@ -375,7 +383,13 @@ fn scipy_make_interp_spline_builds_the_same_curves() {
 #[test]
 fn the_books_example_9_1_has_its_published_parameters_and_knot() {
     // The NURBS Book, Example 9.1: ū = 0, 5/17, 9/17, 14/17, 1 and the knot 28/51.
-    let points = [[0.0, 0.0], [3.0, 4.0], [-1.0, 4.0], [-4.0, 0.0], [-4.0, -3.0]];
+    let points = [
+        [0.0, 0.0],
+        [3.0, 4.0],
+        [-1.0, 4.0],
+        [-4.0, 0.0],
+        [-4.0, -3.0],
+    ];
     let set = PointSet::new(&points, 10).unwrap();
     let spec = InterpolationSpec {
         degree: 3,
@@ -413,7 +427,18 @@ fn given_parameters_and_knots_are_used_and_checked() {
         assert!(distance(at, [q[0], q[1], 0.0]) < 1e-13);
     }
     // Knots that violate Schoenberg–Whitney: N_1 (support (0, 0.5)) vanishes at ū_1 = 1.
-    let six = PointSet::new(&[[0.0, 0.0], [1.0, 1.0], [2.0, 0.0], [3.0, 1.0], [4.0, 0.0], [5.0, 1.0]], 10).unwrap();
+    let six = PointSet::new(
+        &[
+            [0.0, 0.0],
+            [1.0, 1.0],
+            [2.0, 0.0],
+            [3.0, 1.0],
+            [4.0, 0.0],
+            [5.0, 1.0],
+        ],
+        10,
+    )
+    .unwrap();
     let six_parameters = [0.0, 1.0, 2.0, 3.0, 4.0, 5.0];
     let bad = [0.0, 0.0, 0.0, 0.2, 0.5, 5.0, 5.0, 5.0];
     let singular = interpolate(
@@ -426,7 +451,10 @@ fn given_parameters_and_knots_are_used_and_checked() {
         &CurveLimits::default(),
     );
     assert!(
-        matches!(singular, Err(InterpolationError::Singular { given_knots: true })),
+        matches!(
+            singular,
+            Err(InterpolationError::Singular { given_knots: true })
+        ),
         "{singular:?}"
     );
     let decreasing = [0.0, 1.0, 1.0, 3.0, 4.0];
@@ -459,7 +487,10 @@ fn bad_requests_are_named() {
     let three = PointSet::new(&[[0.0, 0.0], [1.0, 0.0], [2.0, 1.0]], 10).unwrap();
     assert!(matches!(
         interpolate(&three, &spec(3), &limits),
-        Err(InterpolationError::Points(PointsError::TooFewPoints { needed: 4, .. }))
+        Err(InterpolationError::Points(PointsError::TooFewPoints {
+            needed: 4,
+            ..
+        }))
     ));
     // One tangent makes room for the cubic.
     let with_tangent = InterpolationSpec {
@@ -470,7 +501,10 @@ fn bad_requests_are_named() {
     let repeated = PointSet::new(&[[0.0, 0.0], [1.0, 0.0], [1.0, 0.0], [2.0, 1.0]], 10).unwrap();
     assert!(matches!(
         interpolate(&repeated, &spec(2), &limits),
-        Err(InterpolationError::Points(PointsError::CoincidentPoints { index: 2, .. }))
+        Err(InterpolationError::Points(PointsError::CoincidentPoints {
+            index: 2,
+            ..
+        }))
     ));
     let small = CurveLimits {
         max_control_points: 2,
@@ -517,7 +551,10 @@ fn ten_thousand_points_interpolate_in_a_banded_solve() {
     };
     let interpolation = interpolate(&set, &spec, &CurveLimits::default()).unwrap();
     for k in (0..10_000).step_by(997) {
-        let at = interpolation.curve.point(interpolation.parameters[k]).unwrap();
+        let at = interpolation
+            .curve
+            .point(interpolation.parameters[k])
+            .unwrap();
         assert!(distance(at, [points[k][0], points[k][1], 0.0]) < 1e-10);
     }
 }

@@ -14,8 +14,8 @@ mod toolkit;
 mod approximation;
 mod dense;
 mod interpolation;
-mod point_sets;
 mod measures;
+mod point_sets;
 mod reshaping;
 
 use proptest::test_runner::Config;

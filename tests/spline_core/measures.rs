@@ -60,8 +60,29 @@ fn simpson(
     if depth == 0 || delta.abs() <= 15.0 * tol {
         return left + right + delta / 15.0;
     }
-    simpson(reference, end, a, m, fa, flm, fm, left, tol / 2.0, depth - 1)
-        + simpson(reference, end, m, b, fm, frm, fb, right, tol / 2.0, depth - 1)
+    simpson(
+        reference,
+        end,
+        a,
+        m,
+        fa,
+        flm,
+        fm,
+        left,
+        tol / 2.0,
+        depth - 1,
+    ) + simpson(
+        reference,
+        end,
+        m,
+        b,
+        fm,
+        frm,
+        fb,
+        right,
+        tol / 2.0,
+        depth - 1,
+    )
 }
 
 /// The test's length of `[lo, hi]`: adaptive Simpson on each knot span.
@@ -80,9 +101,24 @@ fn test_length(reference: &Reference, lo: f64, hi: f64, scale: f64) -> f64 {
         .map(|w| {
             let (a, b) = (w[0], w[1]);
             let m = 0.5 * (a + b);
-            let (fa, fm, fb) = (speed(reference, a, b), speed(reference, m, b), speed(reference, b, b));
+            let (fa, fm, fb) = (
+                speed(reference, a, b),
+                speed(reference, m, b),
+                speed(reference, b, b),
+            );
             let whole = (b - a) / 6.0 * (fa + 4.0 * fm + fb);
-            simpson(reference, b, a, b, fa, fm, fb, whole, SIMPSON_TARGET * scale, SIMPSON_DEPTH)
+            simpson(
+                reference,
+                b,
+                a,
+                b,
+                fa,
+                fm,
+                fb,
+                whole,
+                SIMPSON_TARGET * scale,
+                SIMPSON_DEPTH,
+            )
         })
         .sum()
 }
@@ -181,7 +217,12 @@ fn known_lengths() {
     let limits = CurveLimits::default();
     let line = Curve::new(
         3,
-        &[[0.0, 0.0, 0.0], [1.0, 2.0, 2.0], [2.0, 4.0, 4.0], [3.0, 6.0, 6.0]],
+        &[
+            [0.0, 0.0, 0.0],
+            [1.0, 2.0, 2.0],
+            [2.0, 4.0, 4.0],
+            [3.0, 6.0, 6.0],
+        ],
         &[0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0],
         None,
         &limits,
@@ -205,7 +246,10 @@ fn known_lengths() {
     let t = arc.parameter_at(exact / 3.0);
     let p = quarter.point(t).unwrap();
     let angle = p[1].atan2(p[0]);
-    assert!((angle - std::f64::consts::FRAC_PI_6).abs() < 1e-11, "{angle}");
+    assert!(
+        (angle - std::f64::consts::FRAC_PI_6).abs() < 1e-11,
+        "{angle}"
+    );
     // A cubic going back and forth along a line, x = -1, 2, -2, 1 as a Bézier piece:
     // x'(t) = 3 (14 t² − 14 t + 3) changes sign at t = 1/2 ± √28/28, where the speed has a
     // kink; the length is x's total variation.

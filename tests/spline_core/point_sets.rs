@@ -26,11 +26,6 @@ pub struct PointCase {
 }
 
 impl PointCase {
-    /// The number of coordinates.
-    pub fn dimension(&self) -> usize {
-        self.points[0].len()
-    }
-
     /// The points with `z = 0` added when planar.
     pub fn points_3d(&self) -> Vec<[f64; 3]> {
         self.points
@@ -50,7 +45,10 @@ impl PointCase {
                 high[c] = high[c].max(p[c]);
             }
         }
-        (0..3).map(|c| (high[c] - low[c]).powi(2)).sum::<f64>().sqrt()
+        (0..3)
+            .map(|c| (high[c] - low[c]).powi(2))
+            .sum::<f64>()
+            .sqrt()
     }
 }
 
@@ -82,11 +80,7 @@ fn build(shape: Shape, count: usize, dimension: usize, randoms: &[f64]) -> Vec<V
                     if k % 2 == 0 { 1.0 } else { -1.0 } * (0.5 + r(base + 1)),
                     r(base + 2),
                 ],
-                Shape::Scattered => vec![
-                    10.0 * r(base),
-                    10.0 * r(base + 1),
-                    10.0 * r(base + 2),
-                ],
+                Shape::Scattered => vec![10.0 * r(base), 10.0 * r(base + 1), 10.0 * r(base + 2)],
             };
             point.truncate(dimension);
             point

@@ -41,7 +41,11 @@ pub async fn length(
     let degree = request.curve.degree.saturating_add(1);
     // Three 16-point rules per span to start, and about a hundred more per length asked.
     let work = (request.curve.control_points.len().saturating_mul(48)
-        + request.at_lengths.as_ref().map_or(0, Vec::len).saturating_mul(100 * 16))
+        + request
+            .at_lengths
+            .as_ref()
+            .map_or(0, Vec::len)
+            .saturating_mul(100 * 16))
     .saturating_mul(degree);
     compute(admission, work, move || {
         length_request(&request, &limits, &curve_limits)

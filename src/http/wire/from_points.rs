@@ -86,8 +86,8 @@ pub struct InterpolateRequest {
 #[schema(example = json!({
     "curve": {
         "degree": 3,
-        "control_points": [[0, 0], [7.3169635171119936, 3.6867775378046667], [-4.957403846413158, 6.3114337693213585], [-3.7419756420105843, -1.8197493246367876], [-4, -3]],
-        "knots": [0, 0, 0, 0, 0.5490196078431373, 1, 1, 1, 1]
+        "control_points": [[0, 0], [7.3169635171119936, 3.6867775257587376], [-2.9581305658514245, 6.678276528176592], [-4.494953466891108, -0.6736915062424752], [-4, -3]],
+        "knots": [0, 0, 0, 0, 0.5490196078431372, 1, 1, 1, 1]
     },
     "parameters": [0, 0.29411764705882354, 0.5294117647058824, 0.8235294117647058, 1]
 }))]
@@ -132,9 +132,9 @@ pub struct ApproximateRequest {
 /// The approximating curve and its certified error.
 #[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
 #[schema(example = json!({
-    "curve": {"degree": 3, "control_points": [[0, 0], [2.1, 2.2], [3.9, -2.9], [6, -0.3]], "knots": [0, 0, 0, 0, 1, 1, 1, 1]},
-    "max_error": 0.041,
-    "parameters": [0, 0.16, 0.33, 0.5, 0.66, 0.83, 1]
+    "curve": {"degree": 3, "control_points": [[0, 0], [2.9932705702000284, 3.242623872080212], [3.290293767869331, -3.089350749906089], [6, -0.3]], "knots": [0, 0, 0, 0, 1, 1, 1, 1]},
+    "max_error": 0.021611297973411412,
+    "parameters": [0, 0.12411465998160857, 0.2802350736255141, 0.48082120566597925, 0.6848401654250432, 0.8609164176334769, 1]
 }))]
 pub struct ApproximateResponse {
     /// The curve: clamped, domain `[0, 1]`, full knot convention, as few control points as

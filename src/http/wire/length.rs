@@ -9,8 +9,8 @@ use crate::http::curve::CurveBody;
 #[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
 #[serde(deny_unknown_fields)]
 #[schema(example = json!({
-    "curve": {"degree": 2, "control_points": [[1, 0], [1, 1], [0, 1]], "knots": [0, 0, 0, 1, 1, 1], "weights": [1, 0.7071067811865476, 1]},
-    "at_lengths": [0.7853981633974483]
+    "curve": {"degree": 2, "control_points": [[1, 0], [1, 1], [0, 1]], "knots": [0, 0, 0, 1, 1, 1], "weights": [1, std::f64::consts::FRAC_1_SQRT_2, 1]},
+    "at_lengths": [std::f64::consts::FRAC_PI_4]
 }))]
 pub struct LengthRequest {
     /// The curve (rational or not, 2D or 3D, either knot convention).
@@ -29,8 +29,8 @@ pub struct LengthRequest {
 /// The arc length.
 #[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
 #[schema(example = json!({
-    "length": 1.5707963267948966,
-    "error_estimate": 1.2e-16,
+    "length": std::f64::consts::FRAC_PI_2,
+    "error_estimate": 2.220446049250313e-16,
     "parameters": [0.5]
 }))]
 pub struct LengthResponse {

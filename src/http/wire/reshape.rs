@@ -23,6 +23,9 @@ pub struct ElevateDegreeRequest {
 
 /// The same curve with the higher degree.
 #[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+#[schema(example = json!({
+    "curve": {"degree": 3, "control_points": [[0, 0], [0.6666666666666667, 1.3333333333333335], [1.3333333333333335, 2], [2.6666666666666665, 2], [3.3333333333333335, 1.3333333333333333], [4, 0]], "knots": [0, 0, 0, 0, 0.5, 0.5, 1, 1, 1, 1]}
+}))]
 pub struct ElevateDegreeResponse {
     /// The same shape (The NURBS Book A5.9): each interior knot's multiplicity grows by the
     /// degree difference (continuity kept); clamped over the input's domain (`degree + 1`
@@ -35,8 +38,8 @@ pub struct ElevateDegreeResponse {
 #[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
 #[serde(deny_unknown_fields)]
 #[schema(example = json!({
-    "curve": {"degree": 3, "control_points": [[0, 0], [0.5, 1], [1.5, 2], [2.5, 1.75], [3.5, 0.5], [4, 0]], "knots": [0, 0, 0, 0, 0.25, 0.5, 1, 1, 1, 1]},
-    "tolerance": 0.01
+    "curve": {"degree": 3, "control_points": [[0, 0], [0.5, 1], [2, 2.03], [3.5, 1], [4, 0]], "knots": [0, 0, 0, 0, 0.5, 1, 1, 1, 1]},
+    "tolerance": 0.05
 }))]
 pub struct RemoveKnotsRequest {
     /// The curve (rational or not, 2D or 3D, either knot convention).
@@ -45,7 +48,7 @@ pub struct RemoveKnotsRequest {
     /// exactly removable knots go (a knot counts as removable when its bound is within the
     /// tolerance plus `1e-12` times the largest control-point coordinate magnitude, the
     /// rounding of the computation).
-    #[schema(minimum = 0, example = 0.01)]
+    #[schema(minimum = 0, example = 0.05)]
     pub tolerance: f64,
     /// The knot values to try: interior knots of the curve (strictly inside the domain), a
     /// value removed at most as many times as it is listed (at most its multiplicity).
@@ -57,9 +60,9 @@ pub struct RemoveKnotsRequest {
 /// The curve with fewer knots.
 #[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
 #[schema(example = json!({
-    "curve": {"degree": 3, "control_points": [[0, 0], [0.5, 1], [2.2, 2.6], [3.5, 0.5], [4, 0]], "knots": [0, 0, 0, 0, 0.5, 1, 1, 1, 1]},
-    "removed": [0.25],
-    "max_deviation": 0.0087
+    "curve": {"degree": 3, "control_points": [[0, 0], [1, 2.03], [3, 2], [4, 0]], "knots": [0, 0, 0, 0, 1, 1, 1, 1]},
+    "removed": [0.5],
+    "max_deviation": 0.015000000000000124
 }))]
 pub struct RemoveKnotsResponse {
     /// The new curve: same degree, domain, weights' presence and knot convention.
@@ -89,6 +92,13 @@ pub struct SplitRequest {
 
 /// The pieces.
 #[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+#[schema(example = json!({
+    "curves": [
+        {"degree": 3, "control_points": [[0, 0], [0.5, 1], [1, 1.5], [1.46875, 1.6875]], "knots": [0, 0, 0, 0, 0.25, 0.25, 0.25, 0.25]},
+        {"degree": 3, "control_points": [[1.46875, 1.6875], [1.9375, 1.875], [2.375, 1.75], [2.75, 1.5]], "knots": [0.25, 0.25, 0.25, 0.25, 0.5, 0.5, 0.5, 0.5]},
+        {"degree": 3, "control_points": [[2.75, 1.5], [3.5, 1], [4, 0], [5, 1]], "knots": [0.5, 0.5, 0.5, 0.5, 1, 1, 1, 1]}
+    ]
+}))]
 pub struct SplitResponse {
     /// One curve per piece, in order of parameter: piece `i` is the input on
     /// `[c_i, c_(i+1)]` (`c` the domain's start, the sorted split values, the domain's

@@ -120,7 +120,9 @@ pub fn remove_error(error: &RemoveError) -> ApiError {
         _ if matches!(error, RemoveError::InvalidTolerance) => {
             ApiError::invalid("/tolerance", error.to_string())
         }
-        Some(index) => ApiError::invalid(JsonPointer::from("/knots").push(index), error.to_string()),
+        Some(index) => {
+            ApiError::invalid(JsonPointer::from("/knots").push(index), error.to_string())
+        }
         None => ApiError::invalid("/knots", error.to_string()),
     }
 }
