@@ -24,14 +24,19 @@
 //!   distance from `c` of the new curve's control points that reach the changed part, `w_min`
 //!   the smallest weight there.
 //!
-//! Several removals add their bounds where their changed parts overlap: each original knot
-//! span keeps the sum of the bounds of the removals that reached it, and a removal is made
-//! only if every span it reaches stays within the tolerance. The bound reported is the smaller
-//! of that sum and the direct bound of the final curve against the original.
+//! The bound of one removal orders the candidates (cheapest first). Whether a removal is
+//! made is decided against the original curve, so that the bounds of successive removals do
+//! not add up: on each original knot span that the removal changes, the Bézier pieces of the
+//! original and of the new curve are compared, the same bounds applied to their Bernstein
+//! coefficients (the Bernstein polynomials are a partition of unity too), the pair halved by
+//! de Casteljau while the bound exceeds the tolerance. A removal is made when every span it
+//! reaches stays within the tolerance; each span keeps its bound, and `max_deviation` is the
+//! largest.
 
 use smallvec::SmallVec;
 
 use super::basis::CAP;
+use super::bezier::BezierPiece;
 use super::curve::{Curve, Dimension, KnotConvention};
 use super::vector::Point;
 
@@ -312,24 +317,26 @@ impl Curve {
             return Err(RemoveError::InvalidTolerance);
         }
         let p = self.degree();
-        let (lo, hi) = self.domain();
+        let (_, hi) = self.domain();
         let original = self.knots();
         let budgets = self.removal_budgets(candidates)?;
         let allowance = EXACT_REMOVAL_ALLOWANCE * self.coordinate_magnitude();
         let limit = tolerance + allowance;
-        // The original spans' accumulated bounds.
-        let mut breaks: Vec<f64> = original
+        // Each original span's certified bound of the current curve against the original,
+        // from their Bézier pieces there.
+        let original_pieces: Vec<BezierPiece> = self.bezier_pieces().collect();
+        let breaks: Vec<f64> = original_pieces
             .iter()
-            .copied()
-            .filter(|&u| lo <= u && u <= hi)
+            .map(|piece| piece.domain.0)
+            .chain(std::iter::once(hi))
             .collect();
-        breaks.dedup();
-        let mut span_bounds = vec![0.0f64; breaks.len().saturating_sub(1)];
+        let mut span_bounds = vec![0.0f64; original_pieces.len()];
         let mut knots = original.to_vec();
         let mut points = self.homogeneous().to_vec();
         let mut budgets = budgets;
         let mut removed = Vec::new();
         let rational = self.is_rational();
+        let mut trial_bounds: Vec<f64> = Vec::new();
         for _round in 0..MAX_REMOVAL_ROUNDS {
             let mut order: Vec<(f64, usize)> = budgets
                 .iter()
@@ -361,13 +368,21 @@ impl Curve {
                     let last = breaks
                         .partition_point(|&b| b < trial.changed.1)
                         .min(span_bounds.len());
-                    let reached = &mut span_bounds[first..last];
-                    if reached.iter().any(|&e| e + trial.bound > limit) {
+                    let window = self.trial_window(&knots, &points, &trial);
+                    trial_bounds.clear();
+                    let mut within = true;
+                    for piece in &original_pieces[first..last] {
+                        let bound = window.deviation_from(piece, limit);
+                        within &= bound <= limit;
+                        if !within {
+                            break;
+                        }
+                        trial_bounds.push(bound);
+                    }
+                    if !within {
                         break;
                     }
-                    for e in reached.iter_mut() {
-                        *e += trial.bound;
-                    }
+                    span_bounds[first..last].copy_from_slice(&trial_bounds);
                     apply_removal(&mut knots, &mut points, &trial);
                     budgets[index].1 -= 1;
                     removed.push(value);
@@ -379,19 +394,63 @@ impl Curve {
             }
         }
         removed.sort_by(f64::total_cmp);
-        let accumulated = span_bounds.iter().copied().fold(0.0, f64::max);
+        let max_deviation = span_bounds.iter().copied().fold(0.0, f64::max);
         let curve = self.with_homogeneous(knots, &points);
-        let direct = if removed.is_empty() {
-            0.0
-        } else {
-            self.direct_deviation(&curve, &removed)
-                .unwrap_or(f64::INFINITY)
-        };
         Ok(KnotRemoval {
             curve,
             removed,
-            max_deviation: accumulated.min(direct),
+            max_deviation,
         })
+    }
+
+    /// The part of the curve after `trial` (applied to `knots`, `points`) that the removal
+    /// changes: its control points from `p` before the first changed one to `p` after the
+    /// last (clipped), with their knots, as a curve whose domain holds the changed part.
+    fn trial_window(&self, knots: &[f64], points: &[[f64; 4]], trial: &LocalRemoval) -> Curve {
+        let p = self.degree();
+        let changed = trial.points.len();
+        let count = points.len() - 1;
+        let point = |i: usize| -> [f64; 4] {
+            if i < trial.first {
+                points[i]
+            } else if i < trial.first + changed {
+                trial.points[i - trial.first]
+            } else {
+                points[i + 1]
+            }
+        };
+        let knot = |j: usize| {
+            if j < trial.knot_index {
+                knots[j]
+            } else {
+                knots[j + 1]
+            }
+        };
+        let low = trial.first.saturating_sub(p);
+        let high = (trial.first + changed - 1 + p).min(count - 1);
+        let window_points: Vec<[f64; 4]> = (low..=high).map(point).collect();
+        let window_knots: Vec<f64> = (low..=high + p + 1).map(knot).collect();
+        from_homogeneous(
+            p,
+            self.dimension(),
+            self.is_rational(),
+            window_knots,
+            &window_points,
+            self.convention(),
+        )
+    }
+
+    /// A certified bound of `|C(u) − C_o(u)|` on the domain of `original` (one Bézier piece of
+    /// the original curve, inside this curve's domain): the two pieces' Bézier points compared
+    /// (module docs' bounds, on Bernstein coefficients), both halved by de Casteljau up to
+    /// [`PIECE_HALVINGS`] times while the bound exceeds `limit`.
+    fn deviation_from(&self, original: &BezierPiece, limit: f64) -> f64 {
+        let (a, b) = original.domain;
+        let span = super::basis::find_span(self.knots(), self.degree(), 0.5 * (a + b));
+        let mut out = [[0.0; 4]; CAP];
+        self.bezier_piece_in_span(self.knots(), span, a, b, &mut out);
+        let ours = BezierPiece::new((a, b), self.degree(), self.is_rational(), out);
+        piece_bound(original, &ours, limit, PIECE_HALVINGS)
     }
 
     /// `(value, removals allowed)` for each distinct candidate, checked against the knots.
@@ -461,37 +520,42 @@ impl Curve {
             self.convention(),
         )
     }
+}
 
-    /// The direct bound of `|self − other|` with `other` = `self` with `removed` taken out:
-    /// `other` refined back onto `self`'s knots and compared point by point (module docs).
-    /// `None` when the removed values include a knot of multiplicity above the degree (where
-    /// refinement does not apply).
-    fn direct_deviation(&self, other: &Curve, removed: &[f64]) -> Option<f64> {
-        let p = self.degree();
-        if removed.iter().any(|&u| knot_run(self.knots(), u).1 > p) {
-            return None;
-        }
-        let back = other.refined(removed);
-        if back.knots().len() != self.knots().len() {
-            return None;
-        }
-        let ours = self.homogeneous();
-        let theirs = back.homogeneous();
-        if !self.is_rational() {
-            return Some(
-                ours.iter()
-                    .zip(theirs)
-                    .map(|(a, b)| (0..3).map(|c| (a[c] - b[c]).powi(2)).sum::<f64>().sqrt())
-                    .fold(0.0, f64::max),
-            );
-        }
-        let differences: Vec<[f64; 4]> = ours
+/// Halvings of a pair of Bézier pieces at most when their bound exceeds the limit.
+pub const PIECE_HALVINGS: u32 = 3;
+
+/// The bound of `|C_new − C_old|` on one pair of Bézier pieces over the same interval (the
+/// module docs' bounds with Bernstein coefficients in place of control points), halved while
+/// above `limit`.
+fn piece_bound(old: &BezierPiece, new: &BezierPiece, limit: f64, halvings: u32) -> f64 {
+    let (a, b) = (old.homogeneous(), new.homogeneous());
+    let differences: SmallVec<[[f64; 4]; CAP]> = a
+        .iter()
+        .zip(b)
+        .map(|(x, y)| std::array::from_fn(|c| x[c] - y[c]))
+        .collect();
+    let bound = if old.is_rational() {
+        // C_new on the old piece's coefficients: P'_i = P_i − ΔP_i (homogeneous).
+        rational_bound(0, a, 0, a.len() - 2, &differences)
+    } else {
+        differences
             .iter()
-            .zip(theirs)
-            .map(|(a, b)| std::array::from_fn(|c| a[c] - b[c]))
-            .collect();
-        Some(rational_bound(0, ours, 0, ours.len() - 2, &differences))
+            .map(|d| (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt())
+            .fold(0.0, f64::max)
+    };
+    if bound <= limit || halvings == 0 || !bound.is_finite() {
+        return bound;
     }
+    let middle = 0.5 * (old.domain.0 + old.domain.1);
+    let (old_left, old_right) = old.split(0.5, middle);
+    let (new_left, new_right) = new.split(0.5, middle);
+    piece_bound(&old_left, &new_left, limit, halvings - 1).max(piece_bound(
+        &old_right,
+        &new_right,
+        limit,
+        halvings - 1,
+    ))
 }
 
 #[cfg(test)]
