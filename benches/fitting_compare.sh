@@ -14,6 +14,7 @@ target_dir=$(cargo metadata --format-version 1 --no-deps |
     python3 -c 'import json, sys; print(json.load(sys.stdin)["target_directory"])')
 work="$target_dir/fitting-compare"
 mkdir -p "$work"
+cores=$(nproc)
 export OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 MKL_NUM_THREADS=1
 
 python=${KNOTSHAPE_BENCH_PYTHON:-python3}
@@ -28,7 +29,7 @@ if ! "$python" -c 'import numpy, scipy, OCP' 2>/dev/null; then
 fi
 
 load() { cut -d' ' -f1-3 /proc/loadavg; }
-echo "cores: $(nproc), load average before: $(load)" >&2
+echo "cores: $cores, load average before: $(load)" >&2
 "$python" benches/fitting_compare.py prepare "$work/input.json"
 KNOTSHAPE_FITTING_INPUT="$work/input.json" KNOTSHAPE_FITTING_OUTPUT="$work/ours.json" \
     cargo bench --bench fitting

@@ -186,29 +186,30 @@ impl Fitter<'_> {
         let m = self.points.len();
         let count = knots.len() - p - 1;
         let mut poles = vec![[0.0; 3]; count];
-        let (free, rows): (std::ops::Range<usize>, Vec<usize>) = if self.ends_exact {
+        let (free, rows) = if self.ends_exact {
             poles[0] = self.points[0];
             poles[count - 1] = self.points[m - 1];
-            (1..count - 1, (1..m - 1).collect())
+            (1..count - 1, 1..m - 1)
         } else {
-            (0..count, (0..m).collect())
+            (0..count, 0..m)
         };
+        let indices: Vec<usize> = rows.clone().collect();
         self.solve_free_poles(
             knots,
             &mut poles,
             free,
-            &rows,
-            parameters,
-            tangents,
+            &indices,
+            &parameters[rows.clone()],
+            tangents.map(|all| &all[rows]),
             tangential_weight,
         )
         .then_some(poles)
     }
 
     /// Least squares for the poles `free` of the curve with `knots` and `poles` (the others
-    /// fixed, their part subtracted from the points), over the points `rows` at their
-    /// `parameters`; writes them into `poles` and returns whether the normal equations were
-    /// regular and the result finite.
+    /// fixed, their part subtracted from the points), over the points `rows` (indices) at
+    /// `parameters` (one per row, in the same order; `tangents` likewise); writes them into
+    /// `poles` and returns whether the normal equations were regular and the result finite.
     ///
     /// With `tangents` (unit tangents of the previous curve at the points), the squared
     /// distance of point `k` is weighted as `|e|² − (1 − μ) (e · T_k)²` (the distance to the
@@ -237,8 +238,8 @@ impl Fitter<'_> {
         let mut normal = SymmetricBandedMatrix::zeros(unknowns * d, (p + 1) * d - 1);
         let mut rhs = vec![0.0; unknowns * d];
         let mut basis = [0.0; CAP];
-        for &k in rows {
-            let t = parameters[k];
+        for (row_index, &k) in rows.iter().enumerate() {
+            let t = parameters[row_index];
             let span = find_span(knots, p, t);
             basis_functions(knots, p, span, t, &mut basis);
             let mut residual = self.points[k];
@@ -251,7 +252,7 @@ impl Fitter<'_> {
                 }
             }
             // The weight matrix M = I − (1 − μ) T Tᵀ.
-            let tangent = tangents.map_or([0.0; 3], |all| all[k]);
+            let tangent = tangents.map_or([0.0; 3], |all| all[row_index]);
             let weight: [[f64; 3]; 3] = std::array::from_fn(|r| {
                 std::array::from_fn(|c| {
                     let identity = if r == c { 1.0 } else { 0.0 };
@@ -376,8 +377,8 @@ impl Fitter<'_> {
     /// that does not is dropped and `μ` grows threefold; the passes stop at
     /// [`MAX_CORRECTION_PASSES`], when the sum improves by less than [`STALL_FRACTION`],
     /// when `μ` would exceed 1, or (with `stop_at_target`) once every point is within the
-    /// target. Returns the pass with the smallest largest error; `None` when the first fit
-    /// is singular.
+    /// target. Returns the pass with the smallest largest error; `None` when the first fit is
+    /// singular.
     fn fit(
         &self,
         knots: Vec<f64>,
@@ -504,40 +505,59 @@ impl Fitter<'_> {
             let Some(removal) = local_removal(p, &knots, &homogeneous, r, s, false) else {
                 continue;
             };
-            let mut trial_knots = knots.clone();
-            let mut trial_points = homogeneous.clone();
-            apply_removal(&mut trial_knots, &mut trial_points, &removal);
-            let count = trial_points.len();
+            // The curve after the removal, read through the removal (no copy of the whole).
+            let changed = removal.points.len();
+            let trial_point = |i: usize| -> [f64; 4] {
+                if i < removal.first {
+                    homogeneous[i]
+                } else if i < removal.first + changed {
+                    removal.points[i - removal.first]
+                } else {
+                    homogeneous[i + 1]
+                }
+            };
+            let trial_knot = |j: usize| {
+                if j < removal.knot_index {
+                    knots[j]
+                } else {
+                    knots[j + 1]
+                }
+            };
+            let count = homogeneous.len() - 1;
             // Free poles: the changed ones and one more on each side (never a fixed end).
             let lowest_free = usize::from(self.ends_exact);
             let highest_free = count - 1 - usize::from(self.ends_exact);
             let free_start = removal.first.saturating_sub(1).max(lowest_free);
-            let free_end = (removal.first + removal.points.len()).min(highest_free);
+            let free_end = (removal.first + changed).min(highest_free);
             if free_start > free_end {
                 continue;
             }
             let window_start = free_start.saturating_sub(p);
             let window_end = (free_end + p).min(count - 1);
-            let window_knots = &trial_knots[window_start..=window_end + p + 1];
+            let window_knots: Vec<f64> = (window_start..=window_end + p + 1)
+                .map(trial_knot)
+                .collect();
             let (from, to) = (window_knots[p], window_knots[window_knots.len() - p - 1]);
             let first = by_parameter.partition_point(|&k| fit.parameters[k] < from);
             let last = by_parameter.partition_point(|&k| fit.parameters[k] <= to);
             let rows: Vec<usize> = by_parameter[first..last].to_vec();
-            let mut window_poles: Vec<Point> = trial_points[window_start..=window_end]
-                .iter()
-                .map(|h| [h[0], h[1], h[2]])
+            let mut window_poles: Vec<Point> = (window_start..=window_end)
+                .map(|i| {
+                    let h = trial_point(i);
+                    [h[0], h[1], h[2]]
+                })
                 .collect();
             let free = free_start - window_start..free_end - window_start + 1;
-            let Some(local) = self.local_refit(window_knots, &mut window_poles, free, &rows, fit)
+            let Some(local) = self.local_refit(&window_knots, &mut window_poles, free, &rows, fit)
             else {
                 continue;
             };
-            // Accepted: the window's poles into the curve, the rows' parameters and errors.
+            // Accepted: the removal, the window's poles into the curve, the rows' parameters
+            // and errors.
+            apply_removal(&mut knots, &mut homogeneous, &removal);
             for (offset, pole) in window_poles.iter().enumerate() {
-                trial_points[window_start + offset] = [pole[0], pole[1], pole[2], 1.0];
+                homogeneous[window_start + offset] = [pole[0], pole[1], pole[2], 1.0];
             }
-            knots = trial_knots;
-            homogeneous = trial_points;
             for (&k, (t, e, tangent)) in rows.iter().zip(local) {
                 fit.parameters[k] = t;
                 fit.errors[k] = e;
@@ -565,8 +585,8 @@ impl Fitter<'_> {
         rows: &[usize],
         fit: &Fit,
     ) -> Option<Vec<(f64, f64, Point)>> {
-        let mut parameters = fit.parameters.clone();
-        let mut tangents = fit.tangents.clone();
+        let mut parameters: Vec<f64> = rows.iter().map(|&k| fit.parameters[k]).collect();
+        let mut tangents: Vec<Point> = rows.iter().map(|&k| fit.tangents[k]).collect();
         let mut weight = INITIAL_TANGENTIAL_WEIGHT;
         for pass in 0..=LOCAL_REFIT_PASSES {
             if pass > 0 {
@@ -596,18 +616,18 @@ impl Fitter<'_> {
             let m = self.points.len();
             let mut within = true;
             let mut results = Vec::with_capacity(rows.len());
-            for &k in rows {
+            for (row, &k) in rows.iter().enumerate() {
                 let fixed = self.ends_exact && (k == 0 || k == m - 1);
-                let start = parameters[k].clamp(curve.domain().0, curve.domain().1);
+                let start = parameters[row].clamp(curve.domain().0, curve.domain().1);
                 let (t, e, tangent) = if fixed {
                     let e = distance(curve.point_unchecked(start), self.points[k]);
-                    (start, e, tangents[k])
+                    (start, e, tangents[row])
                 } else {
                     self.correct(&curve, self.points[k], start)
                 };
                 within &= e <= self.target;
-                parameters[k] = t;
-                tangents[k] = tangent;
+                parameters[row] = t;
+                tangents[row] = tangent;
                 results.push((t, e, tangent));
             }
             if within {
@@ -729,14 +749,14 @@ fn reduce(fitter: &Fitter<'_>, mut fit: Fit) -> Fit {
         if !fitter.removal_round(&mut fit) {
             break;
         }
-        match fitter.fit(
+        let refit = fitter.fit(
             fit.knots.clone(),
             &fit.parameters,
             Some(&fit.tangents),
             false,
-        ) {
-            Some(refit) if refit.max_error() <= fitter.target => fit = refit,
-            _ => {}
+        );
+        if let Some(refit) = refit.filter(|refit| refit.max_error() <= fitter.target) {
+            fit = refit;
         }
     }
     fit
