@@ -265,7 +265,15 @@ pub fn interpolate(
             (template.knots().to_vec(), template.convention())
         }
     };
-    let control_points = solve_open(points.points(), &parameters, &knots, p, spec.end_tangents)
+    let columns = points.dimension().count();
+    let control_points = solve_open(
+        points.points(),
+        &parameters,
+        &knots,
+        p,
+        spec.end_tangents,
+        columns,
+    )
         .map_err(|_| InterpolationError::Singular {
             given_knots: spec.knots.is_some(),
         })?;
@@ -324,47 +332,60 @@ enum Row {
     Derivative(usize),
 }
 
-/// Solves the open collocation system (module docs) for the `m + t` control points.
+/// Solves the open collocation system (module docs) for the `m + t` control points, with
+/// `columns` coordinates (2 or 3).
 fn solve_open(
     points: &[Point],
     parameters: &[f64],
     knots: &[f64],
     p: usize,
     tangents: [Option<Point>; 2],
+    columns: usize,
 ) -> Result<Vec<Point>, super::banded::SingularSystem> {
     let m = points.len();
-    let mut rows = Vec::with_capacity(m + 2);
-    rows.push(Row::Value(0));
-    if tangents[0].is_some() {
-        rows.push(Row::Derivative(0));
-    }
-    rows.extend((1..m - 1).map(Row::Value));
-    if tangents[1].is_some() {
-        rows.push(Row::Derivative(1));
-    }
-    rows.push(Row::Value(m - 1));
-    let n = rows.len();
-    let parameter = |row: &Row| match *row {
+    let (start, end) = (tangents[0].is_some(), tangents[1].is_some());
+    let n = m + usize::from(start) + usize::from(end);
+    // Rows: Q_0, [D_0], Q_1 … Q_{m−2}, [D_1], Q_{m−1}.
+    let row = |r: usize| -> Row {
+        if r == 0 {
+            Row::Value(0)
+        } else if start && r == 1 {
+            Row::Derivative(0)
+        } else if r == n - 1 {
+            Row::Value(m - 1)
+        } else if end && r == n - 2 {
+            Row::Derivative(1)
+        } else {
+            Row::Value(r - usize::from(start))
+        }
+    };
+    let parameter = |row: Row| match row {
         Row::Value(k) => parameters[k],
         Row::Derivative(0) => parameters[0],
         Row::Derivative(_) => parameters[m - 1],
     };
-    let spans: Vec<usize> = rows
-        .iter()
-        .map(|row| find_span(knots, p, parameter(row)))
-        .collect();
+    // The rows' parameters never decrease: their spans are found by walking the knots.
+    let last_span = find_span(knots, p, parameters[m - 1]);
+    let mut spans = Vec::with_capacity(n);
+    let mut span = p;
     let (mut lower, mut upper) = (0, 0);
-    for (r, &s) in spans.iter().enumerate() {
-        lower = lower.max(r.saturating_sub(s - p));
-        upper = upper.max(s.saturating_sub(r));
+    for r in 0..n {
+        let t = parameter(row(r));
+        while span < last_span && knots[span + 1] <= t {
+            span += 1;
+        }
+        lower = lower.max(r.saturating_sub(span - p));
+        upper = upper.max(span.saturating_sub(r));
+        spans.push(span);
     }
     let mut matrix = BandedMatrix::zeros(n, lower, upper);
-    let mut rhs = vec![0.0; n * 3];
+    let mut rhs = vec![0.0; n * columns];
     let mut values = [0.0; CAP];
     let mut ders = [[0.0; CAP]; CAP];
-    for (r, (row, &s)) in rows.iter().zip(&spans).enumerate() {
-        let t = parameter(row);
-        let (target, coefficients) = match *row {
+    for (r, &s) in spans.iter().enumerate() {
+        let kind = row(r);
+        let t = parameter(kind);
+        let (target, coefficients) = match kind {
             Row::Value(k) => {
                 basis_functions(knots, p, s, t, &mut values);
                 (points[k], &values)
@@ -379,11 +400,18 @@ fn solve_open(
                 matrix.add(r, s - p + i, value);
             }
         }
-        rhs[r * 3..r * 3 + 3].copy_from_slice(&target);
+        rhs[r * columns..(r + 1) * columns].copy_from_slice(&target[..columns]);
     }
     matrix.factor_lu()?;
-    matrix.solve_lu(&mut rhs, 3);
-    Ok(rhs.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect())
+    matrix.solve_lu(&mut rhs, columns);
+    Ok(rhs
+        .chunks_exact(columns)
+        .map(|c| {
+            let mut point = [0.0; 3];
+            point[..columns].copy_from_slice(c);
+            point
+        })
+        .collect())
 }
 
 /// The full unclamped knot vector of a closed interpolant (`m + 2p + 1` values) from the
