@@ -76,6 +76,9 @@ pub struct Config {
     /// curves in an exported one (more: 422).
     #[arg(long, env = "KNOTSHAPE_MAX_FILE_ENTITIES", default_value_t = Limits::DEFAULT.max_file_entities, global = true)]
     pub max_file_entities: usize,
+    /// Largest number of `points` per interpolate or approximate request (more: 422).
+    #[arg(long, env = "KNOTSHAPE_MAX_FIT_POINTS", default_value_t = Limits::DEFAULT.max_fit_points, global = true)]
+    pub max_fit_points: usize,
 
     /// Time a request may take, in milliseconds, before it is answered with 503.
     #[arg(
@@ -195,6 +198,7 @@ impl Default for Config {
             max_polygon_vertices: Limits::DEFAULT.max_polygon_vertices,
             max_file_bytes: Limits::DEFAULT.max_file_bytes,
             max_file_entities: Limits::DEFAULT.max_file_entities,
+            max_fit_points: Limits::DEFAULT.max_fit_points,
             request_timeout_ms: 10_000,
             concurrency_limit: 64,
             retry_after_secs: 1,
@@ -221,6 +225,7 @@ impl Config {
             max_polygon_vertices: self.max_polygon_vertices,
             max_file_bytes: self.max_file_bytes,
             max_file_entities: self.max_file_entities,
+            max_fit_points: self.max_fit_points,
         }
     }
 
@@ -327,11 +332,13 @@ pub struct Limits {
     pub max_file_bytes: usize,
     /// Entities of an imported file, curves of an exported one.
     pub max_file_entities: usize,
+    /// Points per interpolate or approximate request.
+    pub max_fit_points: usize,
 }
 
 impl Limits {
     /// The defaults: 1 MiB bodies, 10 000 control points, 10 000 parameters, derivatives up to
-    /// order 8, 2 000 vertices per polygon, files of 1 MiB and 100 000 entities.
+    /// order 8, 2 000 vertices per polygon, files of 1 MiB and 100 000 entities, 10 000 points to fit.
     pub const DEFAULT: Limits = Limits {
         max_body_bytes: 1024 * 1024,
         max_control_points: 10_000,
@@ -340,6 +347,7 @@ impl Limits {
         max_polygon_vertices: 2_000,
         max_file_bytes: 1024 * 1024,
         max_file_entities: 100_000,
+        max_fit_points: 10_000,
     };
 }
 

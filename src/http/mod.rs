@@ -39,6 +39,7 @@ use utoipa_axum::routes;
 use crate::config::Config;
 use error::{FieldError, PROBLEM_JSON, Problem};
 use routes::{closest, curves, editor, files, ops, shape, toolkit};
+use routes::{from_points, length, reshape};
 pub use server::{Server, shutdown_signal};
 pub use state::{AppState, Readiness};
 
@@ -106,6 +107,13 @@ fn v1_routes() -> OpenApiRouter<AppState> {
         .routes(routes!(toolkit::bezier))
         .routes(routes!(files::import))
         .routes(routes!(files::export))
+        // The curve toolkit of the third release.
+        .routes(routes!(from_points::interpolate))
+        .routes(routes!(from_points::approximate))
+        .routes(routes!(reshape::elevate_degree))
+        .routes(routes!(reshape::remove_knots))
+        .routes(routes!(reshape::split))
+        .routes(routes!(length::length))
         .routes(routes!(shape::membership))
         .routes(routes!(shape::regions))
         .routes(routes!(shape::solve))
@@ -178,8 +186,8 @@ pub fn openapi_json() -> String {
             answers use the caller's form."
     ),
     tags(
-        (name = "curves", description = "Curve evaluation, polylines, knot insertion, Bézier pieces and the knot-moving envelope"),
-        (name = "shape", description = "Shape modification of cubic curves by knot pairs Ω1–Ω6 (Tornai; Juhász & Hoffmann)"),
+        (name = "curves", description = "Curve evaluation, polylines, knot insertion, Bézier pieces and the knot-moving envelope; curves through and near points, degree elevation, knot removal, splitting, arc length and curvature"),
+        (name = "shape", description = "Shape modification by knot pairs Ω1–Ω6 (Tornai; Juhász & Hoffmann), control points and weights, under constraints"),
         (name = "operations", description = "Probes, metrics and this document; never need the API key"),
     ),
     components(schemas(Problem, FieldError)),
@@ -282,6 +290,6 @@ mod tests {
     fn the_document_names_every_route() {
         let document = openapi();
         let paths: Vec<&String> = document.paths.paths.keys().collect();
-        assert_eq!(paths.len(), 14, "{paths:?}");
+        assert_eq!(paths.len(), 14 + 6, "{paths:?}");
     }
 }

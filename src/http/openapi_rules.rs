@@ -56,6 +56,12 @@ const ARRAY_LENGTHS: &[(&str, &str, usize, u64, u64)] = &[
         0,
         crate::shape::MAX_CONSTRAINTS as u64,
     ),
+    // The curve toolkit of the third release.
+    ("InterpolateRequest", "points", 1, 2, 3),
+    ("InterpolateRequest", "end_tangents", 0, 2, 2),
+    ("InterpolateRequest", "end_tangents", 1, 2, 3),
+    ("ApproximateRequest", "points", 1, 2, 3),
+    ("LengthRequest", "range", 0, 2, 2),
 ];
 
 /// `(schema, property)` of lists that need at least one entry, none repeated.
@@ -78,6 +84,7 @@ const POSITIVE: &[(&str, &str, usize)] = &[
     ("EvaluateRequest", "tolerance", 0),
     ("RegionsRequest", "tolerance", 0),
     ("EditableAt", "spacing", 0),
+    ("ApproximateRequest", "tolerance", 0),
 ];
 
 /// Writes the rules into `document` (an OpenAPI 3.1 document as JSON).

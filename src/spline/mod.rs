@@ -1,5 +1,6 @@
 //! The spline core: validated B-spline/NURBS curves, evaluation, the knot-moving envelope,
-//! knot insertion, Bézier pieces and certified tessellation.
+//! knot insertion, Bézier pieces and certified tessellation; curves through and near points,
+//! degree elevation, knot removal, splitting, arc length and curvature.
 //!
 //! Pure geometry: no HTTP, wire-format or logging types. Conventions follow docs/method.md §1:
 //! degree `p`, order `k = p + 1`, control points `d_0 ..= d_n`, full knot vector
@@ -17,6 +18,16 @@ mod other_knots;
 mod periodic;
 mod rational_basis;
 mod tessellate;
+// Curves from points and the rest of the toolkit (third release).
+mod approximate;
+pub mod banded;
+mod curvature;
+mod elevate;
+mod fit_points;
+mod interpolate;
+mod length;
+mod remove;
+mod split;
 pub use other_knots::PowerPiece;
 pub mod vector;
 
@@ -34,3 +45,22 @@ pub use periodic::{PeriodicWindow, WrapError};
 pub use rational_basis::{MAX_BASIS_ORDER, RationalBasis};
 pub use tessellate::{ROUNDING_MARGIN, TOLERANCE_FLOOR, TessellationError, distance_to_segment};
 pub use vector::Point;
+
+pub use approximate::{
+    APPROXIMATION_TOLERANCE_FLOOR, Approximation, ApproximationError, ApproximationSpec,
+    approximate,
+};
+pub use curvature::CURVATURE_TANGENT_FLOOR;
+pub use elevate::ElevateError;
+pub use fit_points::{
+    COINCIDENT_POINT_TOLERANCE, Parametrization, PointSet, PointsError, PointsField,
+};
+pub use interpolate::{
+    Interpolation, InterpolationError, InterpolationField, InterpolationSpec, ParameterChoice,
+    averaged_knots, interpolate, periodic_knots,
+};
+pub use length::{
+    ArcLength, LENGTH_ESTIMATE_TARGET, LENGTH_RELATIVE_ERROR, LengthError, gauss_legendre_rule,
+};
+pub use remove::{EXACT_REMOVAL_ALLOWANCE, KnotRemoval, MAX_REMOVAL_ROUNDS, RemoveError};
+pub use split::SplitError;

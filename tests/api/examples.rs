@@ -19,6 +19,9 @@ fn check_sensible(path: &str, request: &Value, body: &Value) {
             if let Some(order) = request["derivatives"].as_u64().filter(|&d| d > 0) {
                 assert_eq!(body["derivatives"].as_array().unwrap().len() as u64, order);
             }
+            if request["curvature"] == true {
+                assert_eq!(numbers(&body["curvature"]).len(), parameters.len());
+            }
         }
         "/v1/curves/envelope" => {
             let multiplicity = body["multiplicity"].as_u64().unwrap();
@@ -93,6 +96,36 @@ fn check_sensible(path: &str, request: &Value, body: &Value) {
             assert!(!body["segments"].as_array().unwrap().is_empty());
             assert!(body["svg_path"].as_str().unwrap().starts_with('M'));
         }
+        // The curve toolkit of the third release.
+        "/v1/curves/interpolate" => {
+            let given = request["points"].as_array().unwrap().len();
+            assert_eq!(numbers(&body["parameters"]).len(), given);
+            let poles = body["curve"]["control_points"].as_array().unwrap().len();
+            assert!(poles >= given, "one pole per point at least");
+        }
+        "/v1/curves/approximate" => {
+            let tolerance = request["tolerance"].as_f64().unwrap();
+            assert!(body["max_error"].as_f64().unwrap() <= tolerance);
+            let poles = body["curve"]["control_points"].as_array().unwrap().len();
+            assert!(poles < request["points"].as_array().unwrap().len());
+        }
+        "/v1/curves/elevate-degree" => {
+            assert_eq!(body["curve"]["degree"], request["degree"]);
+        }
+        "/v1/curves/remove-knots" => {
+            assert!(!body["removed"].as_array().unwrap().is_empty());
+            let tolerance = request["tolerance"].as_f64().unwrap();
+            assert!(body["max_deviation"].as_f64().unwrap() <= tolerance);
+        }
+        "/v1/curves/split" => {
+            let cuts = request["parameters"].as_array().unwrap().len();
+            assert_eq!(body["curves"].as_array().unwrap().len(), cuts + 1);
+        }
+        "/v1/curves/length" => {
+            assert!(body["length"].as_f64().unwrap() > 0.0);
+            let asked = request["at_lengths"].as_array().map_or(0, Vec::len);
+            assert_eq!(numbers(&body["parameters"]).len(), asked);
+        }
         other => panic!("no check for {other}"),
     }
 }
@@ -149,7 +182,7 @@ async fn every_example_request_gets_a_sensible_200() {
     }
     assert_eq!(
         endpoints.len(),
-        10,
+        10 + 6,
         "one example or more per endpoint: {endpoints:?}"
     );
 }

@@ -15,6 +15,13 @@ mod periodic;
 mod real_curves;
 mod reference;
 mod toolkit;
+// Curves from points and the rest of the toolkit (third release).
+mod approximation;
+mod dense;
+mod interpolation;
+mod measures;
+mod point_sets;
+mod reshaping;
 
 use proptest::test_runner::Config;
 

@@ -52,8 +52,11 @@ pub async fn evaluate(
             .saturating_mul(request.curve.degree.saturating_add(1)),
         (None, None, None) => 0,
     };
-    let work = request.curve.control_points.len()
-        + points.saturating_mul(request.derivatives.saturating_add(1));
+    let orders = request
+        .derivatives
+        .saturating_add(1)
+        .saturating_add(3 * usize::from(request.curvature));
+    let work = request.curve.control_points.len() + points.saturating_mul(orders);
     compute(admission, work, move || {
         evaluate_request(&request, &limits, &curve_limits)
     })
@@ -155,7 +158,23 @@ fn evaluate_request(
             .tessellate(tolerance, limits.max_parameters)
             .map_err(|error| ApiError::invalid("/tolerance", error.to_string()))?,
     };
-    evaluate_at(&curve, parameters, request.derivatives)
+    let mut response = evaluate_at(&curve, parameters, request.derivatives)?;
+    if request.curvature {
+        add_curvature(&curve, &mut response)?;
+    }
+    Ok(response)
+}
+
+/// Adds `curvature` (and `curvature_undefined` where the tangent vanishes) at the answer's
+/// parameters.
+fn add_curvature(curve: &Curve, response: &mut EvaluateResponse) -> Result<(), ApiError> {
+    let values = curve.curvatures(&response.parameters).map_err(|error| {
+        ApiError::Internal(format!("validated parameters failed to evaluate: {error}"))
+    })?;
+    let undefined: Vec<usize> = (0..values.len()).filter(|&i| values[i].is_none()).collect();
+    response.curvature = Some(values.into_iter().map(|v| v.unwrap_or(0.0)).collect());
+    response.curvature_undefined = (!undefined.is_empty()).then_some(undefined);
+    Ok(())
 }
 
 /// The parameters with those just outside the domain snapped onto its ends
@@ -232,6 +251,8 @@ fn evaluate_at(
         parameters,
         points,
         derivatives,
+        curvature: None,
+        curvature_undefined: None,
     })
 }
 

@@ -7,6 +7,10 @@ pub mod files;
 pub mod ops;
 pub mod shape;
 pub mod toolkit;
+// The curve toolkit of the third release.
+pub mod from_points;
+pub mod length;
+pub mod reshape;
 
 use axum::Extension;
 

@@ -48,6 +48,10 @@ pub struct EvaluateRequest {
     #[serde(default)]
     #[schema(minimum = 0, example = 1)]
     pub derivatives: usize,
+    /// Also answer `curvature` at each parameter (default `false`).
+    #[serde(default)]
+    #[schema(example = false)]
+    pub curvature: bool,
 }
 
 /// The evaluated points.
@@ -72,6 +76,18 @@ pub struct EvaluateResponse {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     #[schema(value_type = Option<Vec<Vec<Vec<f64>>>>)]
     pub derivatives: Option<Vec<Vec<WirePoint>>>,
+    /// Present when `curvature` was asked: `curvature[i]` at `parameters[i]`,
+    /// `|s' × s''| / |s'|³`; for a planar curve signed, `(x' y'' − y' x'') / |s'|³`, positive
+    /// where the curve turns left (counter-clockwise) of its direction of travel. Where the
+    /// tangent vanishes (`|s'|` within `1e-12` of the derivative's scale on the span: a cusp,
+    /// or an end whose first two control points coincide) the curvature is undefined: the
+    /// entry is 0 and its index is in `curvature_undefined`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub curvature: Option<Vec<f64>>,
+    /// The indices into `parameters` where the curvature is undefined (present only when
+    /// there are any).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub curvature_undefined: Option<Vec<usize>>,
 }
 
 /// The knot whose run of equal knots is moved.

@@ -10,3 +10,8 @@ pub mod shape_answer;
 pub mod shape_request;
 pub mod solutions;
 pub mod toolkit;
+// The curve toolkit of the third release.
+pub mod from_points;
+pub mod length;
+pub mod reshape;
+pub mod toolkit_parse;
