@@ -119,19 +119,9 @@ pub fn apply(document: &mut Value) {
             number.insert("exclusiveMinimum".into(), json!(0));
         }
     }
-    if let Some(evaluate) = schemas
-        .get_mut("EvaluateRequest")
-        .and_then(Value::as_object_mut)
-    {
-        evaluate.insert(
-            "oneOf".into(),
-            json!([
-                {"required": ["parameters"]},
-                {"required": ["samples"]},
-                {"required": ["tolerance"]},
-            ]),
-        );
-    }
+    // "Exactly one of `parameters`, `samples` and `tolerance`" stays in the descriptions and
+    // is checked by the handler (a 422): a `oneOf` of `required` lists would make
+    // openapi-python-client type the whole request body as `Any`.
     if let Some(status) = schemas
         .get_mut("Problem")
         .and_then(|p| p.pointer_mut("/properties/status"))
