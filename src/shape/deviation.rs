@@ -161,9 +161,35 @@ fn maximum_squared_gap<const POINTS: usize, const LEN: usize>(
         .flatten()
         .fold(0.0, |size: f64, coordinate| size.max(coordinate.abs()));
     let zero = (ZERO_GAP * size) * (ZERO_GAP * size);
+    // The pieces' end values and midpoint values start the search: a start near the largest
+    // gap lets the pieces far below it go without a single halving (a quarter fewer
+    // instructions for a weight solution's deviation; samples at 1/4 and 3/4 too gained 1%).
+    let degree = len - 1;
+    let value_inside = |interval: &Interval<LEN>, s: f64| {
+        // Σ b_k C(d, k) s^k (1 - s)^(d - k) = (1 - s)^d Σ b_k C(d, k) r^k with r = s / (1 - s),
+        // by Horner's rule; (1 - s)^d cancels in a ratio.
+        let r = s / (1.0 - s);
+        let horner = |coefficients: &[f64; LEN]| {
+            coefficients[..len]
+                .iter()
+                .zip(&BINOMIAL[degree][..len])
+                .rev()
+                .fold(0.0, |sum, (b, c)| sum * r + b * c)
+        };
+        let numerator = horner(&interval.numerator);
+        if rational {
+            numerator / horner(&interval.denominator)
+        } else {
+            numerator * (1.0 - s).powi(degree as i32)
+        }
+    };
     let mut best = stack
         .iter()
-        .map(|interval| value_at(interval, 0).max(value_at(interval, len - 1)))
+        .map(|interval| {
+            value_at(interval, 0)
+                .max(value_at(interval, len - 1))
+                .max(value_inside(interval, 0.5))
+        })
         .fold(0.0, f64::max);
     let mut halvings = 0;
     // Depth-first, so the stack stays short.
