@@ -133,21 +133,38 @@ export function insertKnotsForEditing(curve, parameter) {
   return post("/v1/curves/insert-knots", { curve, editable_at: { parameter } });
 }
 
-/** POST /v1/shape/regions: the regions' polygons of both sides at `parameter`, for the same
- * `keep_domain` as solving (the default, sent explicitly), within `tolerance` of the true
- * boundaries. */
-export function regions(curve, parameter, tolerance) {
-  return post("/v1/shape/regions", { curve, parameter, side: "both", keep_domain: true, tolerance });
+/** POST /v1/curves/evaluate at `parameters` with the first derivatives and the curvature
+ * (for the tangent marks and the curvature comb). */
+export function evaluateWithCurvature(curve, parameters) {
+  return post("/v1/curves/evaluate", { curve, parameters, derivatives: 1, curvature: true });
+}
+
+/** The conditions every solve, membership and regions request of the page carries: the
+ * constraints (pins, tangent locks) and the fixed control points, when there are any. */
+function withConditions(body, { constraints = [], fixed = [] } = {}) {
+  if (constraints.length > 0) body.constraints = constraints;
+  if (fixed.length > 0) body.fixed_control_points = fixed;
+  return body;
+}
+
+/** POST /v1/shape/regions: the reachable sets at `parameter` of the knot pairs (both sides)
+ * and the weight pairs, for the same `keep_domain`, `methods` and fixed control points as
+ * solving (so that every drawn region holds only targets solve reaches), within `tolerance`
+ * of the true boundaries. */
+export function regions(curve, parameter, tolerance, { methods, fixed = [] }) {
+  const body = { curve, parameter, side: "both", keep_domain: true, methods, tolerance };
+  if (fixed.length > 0) body.fixed_control_points = fixed;
+  return post("/v1/shape/regions", body);
 }
 
 /**
  * POST /v1/shape/solve with `nearest`. `family` (optional) narrows the request to one way of
  * moving the point — `{ method, side, region }` — so the answer holds just that family's
  * solution; `svgPaths` asks for each solution's new curve as an SVG path (so a drag's
- * preview needs no second request).
+ * preview needs no second request); `conditions` ({ constraints, fixed }) are sent as they are.
  */
-export function solve(curve, parameter, target, { methods, family = null, svgPaths = false }) {
-  const body = { curve, parameter, target, side: "both", nearest: true, methods };
+export function solve(curve, parameter, target, { methods, family = null, svgPaths = false, conditions = {} }) {
+  const body = withConditions({ curve, parameter, target, side: "both", keep_domain: true, nearest: true, methods }, conditions);
   if (family) {
     body.methods = [family.method];
     if (family.method === "knots") {

@@ -35,6 +35,12 @@ export function bind(elements, actions) {
   function grabbed(event) {
     if (actions.tool() === "pan" || spaceHeld || event.button === 1) return { kind: "pan" };
     const classes = event.target.classList;
+    if (actions.tool() === "pin" || actions.tool() === "tangent") {
+      // A click marks (pins, locks a tangent, fixes a control point); a drag pans.
+      if (classes?.contains("pole-grip")) return { kind: "mark", index: Number(event.target.dataset.index) };
+      if (classes?.contains("curve-hit") || classes?.contains("picked")) return { kind: "mark" };
+      return { kind: "background" };
+    }
     if (classes?.contains("picked")) return { kind: "dot" };
     if (classes?.contains("pole-grip")) return { kind: "pole", index: Number(event.target.dataset.index) };
     if (classes?.contains("curve-hit")) return { kind: "curve" };
@@ -122,6 +128,7 @@ export function bind(elements, actions) {
     if (!g.moved) {
       if (Math.hypot(pixel[0] - g.startPixel[0], pixel[1] - g.startPixel[1]) < DRAG_THRESHOLD) return;
       g.moved = true;
+      if (g.kind === "mark") g.kind = "background";
       if (g.kind === "pan" || g.kind === "background") {
         document.body.dataset.panning = "true";
         actions.panBy([pixel[0] - g.startPixel[0], pixel[1] - g.startPixel[1]]);
@@ -164,6 +171,8 @@ export function bind(elements, actions) {
       else actions.release();
     } else if (!g.moved && g.kind === "background" && !cancelled) {
       actions.dropPick();
+    } else if (!g.moved && g.kind === "mark" && !cancelled) {
+      actions.mark(g.press, g.index);
     }
   }
   canvas.addEventListener("pointerup", (event) => gestureEnd(event, false));
@@ -226,6 +235,10 @@ export function bind(elements, actions) {
       actions.setTool("edit");
     } else if (lower === "h") {
       actions.setTool("pan");
+    } else if (lower === "p") {
+      actions.setTool("pin");
+    } else if (lower === "t") {
+      actions.setTool("tangent");
     } else if (/^[1-9]$/.test(key)) {
       actions.choose(Number(key) - 1);
     }
@@ -278,6 +291,7 @@ export function bind(elements, actions) {
     });
   }
   elements.retry.addEventListener("click", () => actions.retry());
+  elements.clearConditions.addEventListener("click", () => actions.clearConditions());
   elements.apiKey.value = actions.apiKey();
   elements.apiKey.addEventListener("change", () => actions.setApiKey(elements.apiKey.value.trim()));
 }

@@ -3,7 +3,7 @@
 // the notices, the banner, the readout, the typed target — and mirrors what tests read into
 // body[data-*]. It reads the state and never changes it.
 
-import { describeFamily, describeSolution } from "./geometry.js";
+import { describeFamily, describeSolution, knotsRefusal } from "./geometry.js";
 import { LAYERS, METHODS, SHORTCUTS, SNAPS, TOOLS } from "./options.js";
 import { currentCurve, editBase } from "./state.js";
 import { REGION_COLOURS } from "./view.js";
@@ -43,7 +43,11 @@ export function buildPanel(elements) {
   }
   const items = [
     ...Object.keys(REGION_COLOURS).map((name) => [`swatch ${name}`, name.replace("omega", "Ω")]),
+    ["swatch weights", "weight pair's reach"],
     ["swatch triangle", "control triangle"],
+    ["swatch pin", "pin / tangent lock"],
+    ["swatch fixed", "fixed control point"],
+    ["swatch comb", "curvature comb"],
     ["swatch curve", "curve"],
     ["swatch preview", "preview"],
     ["swatch knot", "knots"],
@@ -144,6 +148,24 @@ function drawTargetFields(state, elements) {
   }
 }
 
+const counted = (count, one) => `${count} ${one}${count === 1 ? "" : "s"}`;
+
+/** The methods' note (the knot pairs off for this curve) and the conditions' summary. */
+function drawConditions(state, elements) {
+  const refusal = knotsRefusal(currentCurve(state));
+  document.getElementById("method-knots").disabled = Boolean(refusal);
+  elements.methodsNote.textContent = refusal ?? "";
+  const pins = state.constraints.filter((c) => c.order === 0).length;
+  const tangents = state.constraints.length - pins;
+  const parts = [];
+  if (pins > 0) parts.push(counted(pins, "pin"));
+  if (tangents > 0) parts.push(counted(tangents, "tangent lock"));
+  if (state.fixed.length > 0) parts.push(`${counted(state.fixed.length, "fixed control point")} (${state.fixed.join(", ")})`);
+  const note = state.constraints.length > 0 ? "; regions are not drawn under pins and tangent locks (the solver decides)" : "";
+  elements.conditionsSummary.textContent = parts.length > 0 ? `${parts.join(", ")}${note}.` : "Nothing pinned.";
+  elements.clearConditions.disabled = parts.length === 0;
+}
+
 let mirroredCurve = null;
 let mirroredBase = null;
 
@@ -159,6 +181,7 @@ export function drawPanel(state, elements) {
   elements.redo.disabled = state.history.future.length === 0;
   for (const button of elements.tools.children) button.setAttribute("aria-pressed", String(button.dataset.tool === state.tool));
   for (const method of METHODS) document.getElementById(`method-${method.id.replace("_", "-")}`).checked = state.methods.includes(method.id);
+  drawConditions(state, elements);
   for (const kind of SNAPS) document.getElementById(`snap-${kind.id}`).checked = state.snap[kind.id];
   for (const shown of LAYERS) document.getElementById(`layer-${shown.id}`).checked = state.layers[shown.id];
   const body = document.body.dataset;
@@ -181,4 +204,6 @@ export function drawPanel(state, elements) {
   body.connection = state.connection.state;
   body.tool = state.tool;
   body.frame = JSON.stringify(state.view.frame);
+  body.constraints = JSON.stringify(state.constraints);
+  body.fixed = JSON.stringify(state.fixed);
 }

@@ -78,6 +78,7 @@ const ASSETS: &[Asset] = assets![
     ("js/geometry.js", JAVASCRIPT),
     ("js/drawing.js", JAVASCRIPT),
     ("js/sample.js", JAVASCRIPT),
+    ("js/conditions.js", JAVASCRIPT),
 ];
 
 /// Where browsers look for a site's icon.
