@@ -46,7 +46,7 @@ async function overlays(curve, state) {
     comb.length > 0 ? api.evaluateWithCurvature(curve, comb) : null,
   ]);
   return {
-    conditionMarks: marks?.ok ? marks.value.points.map((point, i) => ({ point, tangent: marks.value.derivatives[i][0] })) : null,
+    conditionMarks: marks?.ok ? marks.value.points.map((point, i) => ({ point, tangent: marks.value.derivatives[0][i] })) : null,
     comb: teeth?.ok ? geometry.combOf(teeth.value) : null,
   };
 }

@@ -226,7 +226,7 @@ export function combOf(answer) {
   const points = [];
   const teeth = [];
   answer.points.forEach((point, i) => {
-    const [dx, dy] = answer.derivatives[i][0];
+    const [dx, dy] = answer.derivatives[0][i];
     const length = Math.hypot(dx, dy);
     const kappa = answer.curvature[i];
     if (!(length > 0) || !Number.isFinite(kappa)) return;
