@@ -52,8 +52,10 @@ function retryAfter(response) {
   return Number.isFinite(seconds) ? Math.min(Math.max(seconds, 0), LONGEST_WAIT_SECONDS) : null;
 }
 
-async function post(path, body) {
-  const headers = { "Content-Type": "application/json", Accept: "application/json" };
+/** POSTs `body` as JSON; the answer is parsed as JSON, or kept as text with `text` (a file
+ * export). */
+async function post(path, body, { text: asText = false } = {}) {
+  const headers = { "Content-Type": "application/json", Accept: asText ? "*/*" : "application/json" };
   const key = apiKey();
   if (key) {
     headers.Authorization = `Bearer ${key}`;
@@ -74,6 +76,7 @@ async function post(path, body) {
       continue;
     }
     connectionListener({ state: "ok", path });
+    if (asText && response.ok) return { ok: true, value: await response.text() };
     return answer(path, response);
   }
 }
@@ -116,6 +119,26 @@ export function evaluateAt(curve, parameters) {
 /** POST /v1/curves/evaluate with `tolerance`: a polyline certified within it. */
 export function evaluatePolyline(curve, tolerance) {
   return post("/v1/curves/evaluate", { curve, tolerance });
+}
+
+/** POST /v1/curves/interpolate: the cubic (or lower degree, for few points) through `points`. */
+export function interpolate(points) {
+  return post("/v1/curves/interpolate", { points, degree: Math.min(3, points.length - 1) });
+}
+
+/** POST /v1/curves/approximate: a curve within `tolerance` of every point. */
+export function approximate(points, tolerance) {
+  return post("/v1/curves/approximate", { points, tolerance, degree: Math.min(3, points.length - 1) });
+}
+
+/** POST /v1/curves/import: every B-spline curve of a STEP or DXF file's text. */
+export function importFile(format, data) {
+  return post("/v1/curves/import", { format, data });
+}
+
+/** POST /v1/curves/export: the STEP or DXF file of `curves`, as text. */
+export function exportFile(format, curves) {
+  return post("/v1/curves/export", { format, curves }, { text: true });
 }
 
 /** POST /v1/curves/bezier: the Bézier pieces and, when SVG can draw it, an SVG path. */

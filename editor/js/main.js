@@ -13,6 +13,7 @@ import * as geometry from "./geometry.js";
 import * as model from "./state.js";
 import * as picking from "./picking.js";
 import * as precision from "./precision.js";
+import * as sketching from "./sketching.js";
 import * as store from "./store.js";
 import * as viewport from "./viewport.js";
 import { bind } from "./interaction.js";
@@ -28,6 +29,8 @@ const IDS = {
   openFile: "open-file", download: "download", apiKey: "api-key", methods: "methods", snaps: "snaps",
   layers: "layers", shortcuts: "shortcuts", banner: "banner", bannerText: "banner-text", retry: "retry",
   readout: "readout", targetX: "target-x", targetY: "target-y", moveTo: "move-to",
+  exportStep: "export-step", exportDxf: "export-dxf", imported: "imported",
+  sketchTolerance: "sketch-tolerance", sketchFinish: "sketch-finish", sketchDiscard: "sketch-discard",
   methodsNote: "methods-note", conditionsSummary: "conditions-summary", clearConditions: "clear-conditions",
 };
 
@@ -138,10 +141,17 @@ function start() {
       return conditions.toggleAt(point, tool === "pin" ? 0 : 1);
     },
     clearConditions: conditions.clearAll,
+    addSketchPoint: sketching.addPoint,
+    dropSketchPoint: sketching.dropLast,
+    discardSketch: sketching.discard,
+    finishSketch: () => sketching.finish(elements.sketchTolerance.value),
     sample: () => committing.loadCurve(structuredClone(SAMPLE_CUBIC), "The sample cubic."),
     bezierSample: () => committing.loadCurve(structuredClone(SINGLE_BEZIER), "A single Bézier piece: pick a point and knots are inserted around it."),
     loadText: files.loadText,
     exportCurve: () => files.exportCurve(elements),
+    exportFile: (format) => files.exportFile(format, elements),
+    openFile: (name, text) => files.openFile(name, text, elements),
+    chooseImported: files.chooseImported,
     retry: connection.probe,
     setApiKey: (key) => {
       api.setApiKey(key);

@@ -8,6 +8,7 @@ export const TOOLS = [
   { id: "pan", label: "Pan", key: "h", help: "every drag pans the view" },
   { id: "pin", label: "Pin", key: "p", help: "click the curve to pin that point (again to unpin); click a control point to fix it (again to free it)" },
   { id: "tangent", label: "Tangent", key: "t", help: "click the curve to lock the tangent's direction there (again to unlock)" },
+  { id: "points", label: "Points", key: "d", help: "click to add points, then Finish (Enter) makes a curve through them" },
 ];
 
 /** The solver's methods the page can ask for (`id` is the API's name; `on` by default). */
@@ -41,7 +42,8 @@ export const SHORTCUTS = [
   ["F", "fit the curve into the view"],
   ["+ / −", "zoom in / out about the centre"],
   ["Space + drag", "pan"],
-  ["V / H / P / T", "edit tool / pan tool / pin tool / tangent tool"],
+  ["V / H / P / T / D", "edit / pan / pin / tangent / points tool"],
+  ["Enter / Backspace", "points tool: make the curve / drop the last point"],
   ["1 – 9", "choose a solution from the list (also during a drag)"],
   ["Ctrl+Z / Ctrl+Shift+Z", "undo / redo"],
 ];

@@ -182,6 +182,8 @@ export function drawPanel(state, elements) {
   for (const button of elements.tools.children) button.setAttribute("aria-pressed", String(button.dataset.tool === state.tool));
   for (const method of METHODS) document.getElementById(`method-${method.id.replace("_", "-")}`).checked = state.methods.includes(method.id);
   drawConditions(state, elements);
+  elements.sketchFinish.disabled = state.sketch.length < 2;
+  elements.sketchDiscard.disabled = state.sketch.length === 0;
   for (const kind of SNAPS) document.getElementById(`snap-${kind.id}`).checked = state.snap[kind.id];
   for (const shown of LAYERS) document.getElementById(`layer-${shown.id}`).checked = state.layers[shown.id];
   const body = document.body.dataset;
@@ -206,4 +208,5 @@ export function drawPanel(state, elements) {
   body.frame = JSON.stringify(state.view.frame);
   body.constraints = JSON.stringify(state.constraints);
   body.fixed = JSON.stringify(state.fixed);
+  body.sketch = JSON.stringify(state.sketch);
 }

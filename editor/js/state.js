@@ -19,6 +19,7 @@ export function initialState(curve, frame, size) {
     methods: METHODS.filter((method) => method.on).map((method) => method.id),
     constraints: [], // pins { parameter, order: 0 } and tangent locks { parameter, order: 1, direction_only: true }
     fixed: [], // indices of the control points no solution may move
+    sketch: [], // the points of "draw by points" (sketching.js)
     layers: Object.fromEntries(LAYERS.map((layer) => [layer.id, layer.shown])),
     snap: Object.fromEntries(SNAPS.map((kind) => [kind.id, false])),
     tool: "edit",

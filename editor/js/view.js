@@ -110,6 +110,13 @@ function drawComb(comb, frame, group) {
   element("polyline", { points: pairs(ends), class: "comb-envelope" }, group);
 }
 
+/** The points of "draw by points", joined in their order. */
+function drawSketch(points, frame, group) {
+  if (points.length === 0) return;
+  element("polyline", { points: pairs(points), class: "sketch-line" }, group);
+  for (const [x, y] of points) element("circle", { cx: x, cy: y, r: DOT / frame.scale, class: "sketch-point" }, group);
+}
+
 /** The pins (rings on the curve) and tangent locks (a bar along the tangent) of `state`. */
 function drawConditions(constraints, marks, frame, group) {
   constraints.forEach((constraint, i) => {
@@ -193,7 +200,7 @@ export function drawScene(state, scene) {
   scene.setAttribute("transform", `matrix(${frame.scale} 0 0 ${-frame.scale} ${frame.offset[0]} ${frame.offset[1]})`);
   const base = editBase(state);
   const shows = state.layers;
-  const layers = Object.fromEntries(["grid", "regions", "control", "comb", "curve", "preview", "marks", "grips", "conditions", "dots"].map(
+  const layers = Object.fromEntries(["grid", "regions", "control", "comb", "curve", "preview", "marks", "grips", "conditions", "sketch", "dots"].map(
     (name) => [name, layer(scene, name)]));
   const showGrid = shows.grid || state.snap.grid;
   redraw(layers.grid, [showGrid, frame, size], (group) => showGrid && drawGrid(frame, size, group));
@@ -212,5 +219,6 @@ export function drawScene(state, scene) {
   redraw(layers.grips, [shows.control, base, frame, state.fixed], (group) => shows.control && drawGrips(base, frame, state.fixed, group));
   const conditionMarks = state.drawing?.conditionMarks;
   redraw(layers.conditions, [state.constraints, conditionMarks, frame], (group) => drawConditions(state.constraints, conditionMarks, frame, group));
+  redraw(layers.sketch, [state.sketch, frame], (group) => drawSketch(state.sketch, frame, group));
   redraw(layers.dots, [state.pick, drag?.solution, drag?.target, frame], (group) => drawDots(state, frame, group));
 }

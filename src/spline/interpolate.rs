@@ -274,9 +274,9 @@ pub fn interpolate(
         spec.end_tangents,
         columns,
     )
-        .map_err(|_| InterpolationError::Singular {
-            given_knots: spec.knots.is_some(),
-        })?;
+    .map_err(|_| InterpolationError::Singular {
+        given_knots: spec.knots.is_some(),
+    })?;
     if control_points.iter().flatten().any(|v| !v.is_finite()) {
         return Err(InterpolationError::NonFiniteResult);
     }

@@ -79,6 +79,7 @@ const ASSETS: &[Asset] = assets![
     ("js/drawing.js", JAVASCRIPT),
     ("js/sample.js", JAVASCRIPT),
     ("js/conditions.js", JAVASCRIPT),
+    ("js/sketching.js", JAVASCRIPT),
 ];
 
 /// Where browsers look for a site's icon.
