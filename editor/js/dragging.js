@@ -211,6 +211,7 @@ async function solveMove(drag, move, timing) {
       family: drag.family,
       alternatives,
       keptIndex,
+      poleOffset: offset,
       previewDrawing,
       movedPoles: movedPoles(solution, drag.piece.curve),
       previewKnots: movedKnots(drag, solution),

@@ -205,17 +205,18 @@ export function describeFamily(family) {
   return family.method.replace("_", " ");
 }
 
-/** A short description of a solution for the list. */
-export function describeSolution(solution) {
+/** A short description of a solution for the list (of a local piece whose first pole is
+ * the curve's `poleOffset`: poles numbered on the whole curve). */
+export function describeSolution(solution, poleOffset = 0) {
   const deviation = solution.max_deviation.toPrecision(3);
   if (solution.method === "knots") {
     return `${describeFamily(familyOf(solution))} · knots ${solution.changed_knots.join(", ")} · max deviation ${deviation}`;
   }
   if (solution.method === "weights") {
     const weights = solution.poles.map((k) => +solution.weights[k].toPrecision(4)).join(", ");
-    return `weights · poles ${solution.poles.join(", ")} → ${weights} · max deviation ${deviation}`;
+    return `weights · poles ${solution.poles.map((k) => k + poleOffset).join(", ")} → ${weights} · max deviation ${deviation}`;
   }
-  return `control points · poles ${solution.changed_control_points.join(", ")} · max deviation ${deviation}`;
+  return `control points · poles ${solution.changed_control_points.map((k) => k + poleOffset).join(", ")} · max deviation ${deviation}`;
 }
 
 /** The curvature comb of an evaluate answer with derivatives and curvature: per parameter

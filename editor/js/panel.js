@@ -68,7 +68,7 @@ export function buildPanel(elements) {
 function listed(state) {
   const drag = state.drag;
   if (drag?.kind === "point" && drag.alternatives) {
-    return { solutions: drag.alternatives, chosen: drag.keptIndex, live: drag.solution, nearest: drag.nearest, family: drag.family };
+    return { solutions: drag.alternatives, chosen: drag.keptIndex, live: drag.solution, nearest: drag.nearest, family: drag.family, poleOffset: drag.poleOffset };
   }
   const entry = state.lastSolutions;
   return entry ? { solutions: entry.solutions, chosen: entry.chosen, live: null, nearest: entry.nearest, family: state.family } : null;
@@ -99,7 +99,7 @@ function drawSolutions(state, elements) {
     radio.value = String(index);
     radio.checked = index === entry.chosen;
     const shown = index === entry.chosen && entry.live ? entry.live : solution;
-    label.append(radio, ` ${describeSolution(shown)}`);
+    label.append(radio, ` ${describeSolution(shown, entry.poleOffset ?? 0)}`);
     item.appendChild(label);
     if (index === entry.chosen) item.className = "kept";
     elements.solutions.appendChild(item);

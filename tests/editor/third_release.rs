@@ -497,7 +497,7 @@ async fn distance_to(app: &TestApp, curve: &Value, point: [f64; 2]) -> f64 {
 }
 
 /// Clicks `pixels` one by one with the Points tool (key D); returns the points the page
-/// took (checked against the pixels clicked, within a twentieth of a pixel).
+/// took (checked against the pixels clicked, within half a pixel).
 async fn click_points(page: &Page<'_>, pixels: &[(i64, i64)]) -> Vec<[f64; 2]> {
     page.run("document.getElementById('canvas').focus();", vec![])
         .await;
