@@ -150,8 +150,21 @@ function drawTargetFields(state, elements) {
 
 const counted = (count, one) => `${count} ${one}${count === 1 ? "" : "s"}`;
 
-/** The methods' note (the knot pairs off for this curve) and the conditions' summary. */
+let drawnConditions = null;
+
+/** The methods' note (the knot pairs off for this curve), the conditions' summary and the
+ * draw-by-points buttons; rewritten only when what they show changed (a drag draws the
+ * panel on every move, and every text set makes the browser lay the page out again). */
 function drawConditions(state, elements) {
+  const key = [currentCurve(state), state.constraints, state.fixed, state.sketch];
+  if (drawnConditions && key.every((value, i) => value === drawnConditions[i])) return;
+  drawnConditions = key;
+  const body = document.body.dataset;
+  body.constraints = JSON.stringify(state.constraints);
+  body.fixed = JSON.stringify(state.fixed);
+  body.sketch = JSON.stringify(state.sketch);
+  elements.sketchFinish.disabled = state.sketch.length < 2;
+  elements.sketchDiscard.disabled = state.sketch.length === 0;
   const refusal = knotsRefusal(currentCurve(state));
   document.getElementById("method-knots").disabled = Boolean(refusal);
   elements.methodsNote.textContent = refusal ?? "";
@@ -182,8 +195,6 @@ export function drawPanel(state, elements) {
   for (const button of elements.tools.children) button.setAttribute("aria-pressed", String(button.dataset.tool === state.tool));
   for (const method of METHODS) document.getElementById(`method-${method.id.replace("_", "-")}`).checked = state.methods.includes(method.id);
   drawConditions(state, elements);
-  elements.sketchFinish.disabled = state.sketch.length < 2;
-  elements.sketchDiscard.disabled = state.sketch.length === 0;
   for (const kind of SNAPS) document.getElementById(`snap-${kind.id}`).checked = state.snap[kind.id];
   for (const shown of LAYERS) document.getElementById(`layer-${shown.id}`).checked = state.layers[shown.id];
   const body = document.body.dataset;
@@ -206,7 +217,4 @@ export function drawPanel(state, elements) {
   body.connection = state.connection.state;
   body.tool = state.tool;
   body.frame = JSON.stringify(state.view.frame);
-  body.constraints = JSON.stringify(state.constraints);
-  body.fixed = JSON.stringify(state.fixed);
-  body.sketch = JSON.stringify(state.sketch);
 }
