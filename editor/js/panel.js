@@ -179,6 +179,13 @@ function drawConditions(state, elements) {
   elements.clearConditions.disabled = parts.length === 0;
 }
 
+/** Sets body[data-name] to `value` only when it differs: every attribute written on the body
+ * makes the browser match again the style rules that depend on the body's attributes. */
+function mirror(name, value) {
+  const body = document.body.dataset;
+  if (body[name] !== value) body[name] = value;
+}
+
 let mirroredCurve = null;
 let mirroredBase = null;
 
@@ -208,13 +215,13 @@ export function drawPanel(state, elements) {
     mirroredBase = base;
     body.base = base === curve ? body.curve : JSON.stringify(base);
   }
-  body.picked = state.pick ? JSON.stringify({ parameter: state.pick.parameter, point: state.pick.point }) : "";
-  body.target = state.drag?.target ? JSON.stringify(state.drag.target) : state.lastTarget ? JSON.stringify(state.lastTarget) : "";
-  body.family = state.drag?.family ? JSON.stringify(state.drag.family) : state.family ? JSON.stringify(state.family) : "";
-  body.solutions = String(listed(state)?.solutions.length ?? 0);
-  body.message = state.message;
-  body.error = state.error;
-  body.connection = state.connection.state;
-  body.tool = state.tool;
-  body.frame = JSON.stringify(state.view.frame);
+  mirror("picked", state.pick ? JSON.stringify({ parameter: state.pick.parameter, point: state.pick.point }) : "");
+  mirror("target", state.drag?.target ? JSON.stringify(state.drag.target) : state.lastTarget ? JSON.stringify(state.lastTarget) : "");
+  mirror("family", state.drag?.family ? JSON.stringify(state.drag.family) : state.family ? JSON.stringify(state.family) : "");
+  mirror("solutions", String(listed(state)?.solutions.length ?? 0));
+  mirror("message", state.message);
+  mirror("error", state.error);
+  mirror("connection", state.connection.state);
+  mirror("tool", state.tool);
+  mirror("frame", JSON.stringify(state.view.frame));
 }
