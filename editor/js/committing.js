@@ -15,8 +15,10 @@ import { fit, needsFit } from "./viewport.js";
  * boundary. */
 const REGION_PIXELS = 0.5;
 
-/** Parameters of the curvature comb's teeth. */
-const COMB_TEETH = 200;
+/** Teeth of the curvature comb: TEETH_PER_SPAN per knot span, within these bounds. */
+const FEWEST_TEETH = 200;
+const MOST_TEETH = 2000;
+const TEETH_PER_SPAN = 8;
 
 /** The methods whose reachable sets the page draws for `curve` in `state`: the ticked knot
  * pairs and weights that can edit it, on a planar curve, and none while constraints hold
@@ -36,18 +38,20 @@ export function regionsAt(curve, parameter, state) {
 }
 
 /** The marks of `state`'s constraints on `curve` ({ point, tangent } each, same order) and
- * the curvature comb's teeth ({ points, normals: unit normals times the curvature }), when
+ * the curvature comb's teeth ({ points, teeth: the unit normals times the curvature }), when
  * shown: one evaluate request each. */
 async function overlays(curve, state) {
   const [lo, hi] = geometry.domain(curve);
-  const comb = state.layers.comb ? Array.from({ length: COMB_TEETH + 1 }, (_, i) => lo + ((hi - lo) * i) / COMB_TEETH) : [];
-  const [marks, teeth] = await Promise.all([
+  const spans = geometry.knotValuesInDomain(curve).length - 1;
+  const teeth = Math.min(Math.max(TEETH_PER_SPAN * spans, FEWEST_TEETH), MOST_TEETH);
+  const comb = state.layers.comb ? Array.from({ length: teeth + 1 }, (_, i) => lo + ((hi - lo) * i) / teeth) : [];
+  const [marks, combAnswer] = await Promise.all([
     state.constraints.length > 0 ? api.evaluateWithCurvature(curve, state.constraints.map((c) => c.parameter)) : null,
     comb.length > 0 ? api.evaluateWithCurvature(curve, comb) : null,
   ]);
   return {
     conditionMarks: marks?.ok ? marks.value.points.map((point, i) => ({ point, tangent: marks.value.derivatives[0][i] })) : null,
-    comb: teeth?.ok ? geometry.combOf(teeth.value) : null,
+    comb: combAnswer?.ok ? geometry.combOf(combAnswer.value) : null,
   };
 }
 

@@ -39,8 +39,9 @@ export function toggleFixed(index) {
 
 /**
  * A click of the Pin (`order` 0) or Tangent (`order` 1) tool at `point` (curve coordinates):
- * the condition at the nearest curve point, or, when one of that order is already within
- * PICK_RADIUS pixels of it, that one removed.
+ * the condition at the nearest curve point (a tangent lock on a pin or on the picked point:
+ * at its parameter), or, when one of that order is already within PICK_RADIUS pixels of it,
+ * that one removed.
  */
 export function toggleAt(point, order) {
   return store.task(async () => {
@@ -75,7 +76,9 @@ export function toggleAt(point, order) {
       store.set({ ...now, message: "", error: `At most ${MOST_CONSTRAINTS} pins and tangent locks.` });
       return false;
     }
-    const t = closest.parameter;
+    // A tangent lock clicked on a pin or on the picked point goes exactly there.
+    const onto = order === 1 ? atMark(now, closest.point, scale) : null;
+    const t = onto ?? closest.parameter;
     if (now.pick && order === 0 && t === now.pick.parameter) {
       store.set({ ...now, message: "The picked point is moving: pin another point.", error: "" });
       return false;
@@ -88,6 +91,16 @@ export function toggleAt(point, order) {
     const pick = now.pick && order === 0 && now.pick.parameter === t ? null : now.pick;
     return redrawn({ ...withConditions(now, [...now.constraints, added], now.fixed, message), pick });
   });
+}
+
+/** The parameter of the pin, or else of the picked point, within PICK_RADIUS pixels of
+ * `point`; null when there is none. */
+function atMark(state, point, scale) {
+  const near = (mark) => mark && Math.hypot(mark[0] - point[0], mark[1] - point[1]) * scale <= PICK_RADIUS;
+  const marks = state.drawing?.conditionMarks ?? [];
+  const pin = state.constraints.findIndex((c, i) => c.order === 0 && near(marks[i]?.point));
+  if (pin >= 0) return state.constraints[pin].parameter;
+  return state.pick && near(state.pick.point) ? state.pick.parameter : null;
 }
 
 /** Removes every pin, tangent lock and fixed control point. */

@@ -334,17 +334,27 @@ async fn pins_tangent_locks_and_fixed_poles_hold_on_the_committed_curve() {
     let at = page.to_screen(point_at(&app, &original, 0.7).await).await;
     page.click_at(at).await;
     page.settle().await;
+    // A click beside the pin (3 px off) locks the tangent exactly at the pin's parameter.
+    let on_pin = page.to_screen(point_at(&app, &original, 0.15).await).await;
+    page.click_at((on_pin.0 + 3, on_pin.1)).await;
+    page.settle().await;
     let constraints: Value = serde_json::from_str(&page.data("constraints").await).unwrap();
     let list = constraints.as_array().unwrap();
-    assert_eq!(list.len(), 2, "{constraints}");
+    assert_eq!(list.len(), 3, "{constraints}");
     assert_eq!(list[0]["order"], json!(0));
-    assert_eq!(list[1]["order"], json!(1));
-    assert_eq!(list[1]["direction_only"], json!(true));
+    for lock in &list[1..] {
+        assert_eq!(lock["order"], json!(1));
+        assert_eq!(lock["direction_only"], json!(true));
+    }
+    assert_eq!(
+        list[2]["parameter"], list[0]["parameter"],
+        "the lock is at the pin"
+    );
     assert_eq!(page.data("fixed").await, "[6]");
     assert_eq!(count(&page, "#scene .pin").await, 1);
-    assert_eq!(count(&page, "#scene .tangent-lock").await, 1);
+    assert_eq!(count(&page, "#scene .tangent-lock").await, 2);
     let pin = list[0]["parameter"].as_f64().unwrap();
-    let lock = list[1]["parameter"].as_f64().unwrap();
+    let locks = [list[1]["parameter"].as_f64().unwrap(), pin];
 
     // The edit tool: the fixed pole and a pole under the pin do not move by hand.
     page.key('v', false).await;
@@ -381,15 +391,17 @@ async fn pins_tangent_locks_and_fixed_poles_hold_on_the_committed_curve() {
         &point_of(&app, &original, pin).await,
         "the pinned point",
     );
-    let (a, b) = (
-        tangent_of(&app, &original, lock).await,
-        tangent_of(&app, &committed, lock).await,
-    );
-    let cross = (a[0] * b[1] - a[1] * b[0]) / (a[0].hypot(a[1]) * b[0].hypot(b[1]));
-    assert!(
-        cross.abs() < 1e-8 && a[0] * b[0] + a[1] * b[1] > 0.0,
-        "tangent {a:?} → {b:?}"
-    );
+    for lock in locks {
+        let (a, b) = (
+            tangent_of(&app, &original, lock).await,
+            tangent_of(&app, &committed, lock).await,
+        );
+        let cross = (a[0] * b[1] - a[1] * b[0]) / (a[0].hypot(a[1]) * b[0].hypot(b[1]));
+        assert!(
+            cross.abs() < 1e-8 && a[0] * b[0] + a[1] * b[1] > 0.0,
+            "tangent at {lock}: {a:?} → {b:?}"
+        );
+    }
     assert_eq!(
         committed["control_points"][6],
         original["control_points"][6]
