@@ -327,7 +327,7 @@ function finishPoint(drag) {
     if (chosen < 0) chosen = 0;
     return commitCurve(geometry.applySolution(drag.base, solution), {
       pick: { parameter: drag.parameter, point: solution.point },
-      lastSolutions: { solutions, chosen, nearest: all.ok ? all.value.nearest ?? null : null, base: drag.base, target },
+      lastSolutions: { solutions, chosen, nearest: all.ok ? all.value.nearest ?? null : null, excluded: all.ok ? all.value.excluded ?? [] : [], base: drag.base, target },
       family: drag.family,
       lastTarget: target,
       message: `Committed: ${geometry.describeSolution(solution)}.`,

@@ -71,7 +71,7 @@ function listed(state) {
     return { solutions: drag.alternatives, chosen: drag.keptIndex, live: drag.solution, nearest: drag.nearest, family: drag.family, poleOffset: drag.poleOffset };
   }
   const entry = state.lastSolutions;
-  return entry ? { solutions: entry.solutions, chosen: entry.chosen, live: null, nearest: entry.nearest, family: state.family } : null;
+  return entry ? { solutions: entry.solutions, chosen: entry.chosen, live: null, nearest: entry.nearest, excluded: entry.excluded, family: state.family } : null;
 }
 
 let drawnList = null;
@@ -88,6 +88,11 @@ function drawSolutions(state, elements) {
     note = `Target outside every region: following the nearest reachable point (distance ${entry.nearest.distance.toPrecision(3)}).`;
   } else if (state.drag?.kind === "point" && entry?.family) {
     note = `Kept through this drag: ${describeFamily(entry.family)} (keys 1–${Math.min(entry.solutions.length, 9)} switch).`;
+  }
+  if (entry?.excluded?.length > 0) {
+    // What the pins, tangent locks and fixed control points ruled out (the API's `excluded`).
+    const dropped = entry.excluded.map((e) => `${e.count} ${e.method.replace("_", " ")} (${e.reason})`).join("; ");
+    note = `${note ? `${note} ` : ""}Left out under the conditions: ${dropped}.`;
   }
   elements.solutionsNote.textContent = note;
   for (const [index, solution] of (entry?.solutions ?? []).entries()) {

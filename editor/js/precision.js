@@ -39,7 +39,7 @@ function moveTo(target, { merge = false, nudging = false } = {}) {
     const done = await commitCurve(geometry.applySolution(base, solution), {
       replace: merge,
       pick: { parameter, point: solution.point, nudged: nudging },
-      lastSolutions: { solutions, chosen, nearest, base, target: lifted },
+      lastSolutions: { solutions, chosen, nearest, excluded: answer.value.excluded ?? [], base, target: lifted },
       family: geometry.familyOf(solution),
       lastTarget: lifted,
       message: `Moved to (${target.map((v) => +v.toPrecision(8)).join(", ")}): ${geometry.describeSolution(solution)}.`,

@@ -240,6 +240,7 @@ async fn the_weights_method_drags_with_a_polyline_preview_and_commits_a_rational
         "document.querySelector('#scene .layer-preview polyline.preview') !== null",
     )
     .await;
+    super::steps::screenshot(&browser.client, "editor-weights.png", false).await;
     page.release().await;
     page.settle().await;
     let committed = page.curve().await;
@@ -374,10 +375,14 @@ async fn pins_tangent_locks_and_fixed_poles_hold_on_the_committed_curve() {
         0,
         "no regions under constraints"
     );
-    let aim = (dot.0 + 10, dot.1 - 24);
+    // Into a knot-pair region (as drawn without conditions): the conditions rule its
+    // solution out, the control-point move under them is committed.
+    let aim = super::steps::pixel_inside_a_region(&page, &app, &original, t, dot).await;
     let target = drag_target(&page, dot, aim).await;
-    page.drag(dot, &[(dot.0 + 5, dot.1 - 12), aim]).await;
+    page.drag(dot, &[((dot.0 + aim.0) / 2, (dot.1 + aim.1) / 2), aim])
+        .await;
     let committed = page.curve().await;
+    super::steps::screenshot(&browser.client, "editor-constraints.png", false).await;
     assert_ne!(
         numbers(&committed),
         numbers(&original),
@@ -406,6 +411,25 @@ async fn pins_tangent_locks_and_fixed_poles_hold_on_the_committed_curve() {
         committed["control_points"][6],
         original["control_points"][6]
     );
+    // What the conditions ruled out, as the API says for the page's own request, is listed.
+    let request = json!({"curve": original, "parameter": t, "target": target, "side": "both",
+                         "nearest": true, "methods": ["knots", "control_points"],
+                         "constraints": constraints, "fixed_control_points": [6]});
+    let (status, body) = app.post_json("/v1/shape/solve", &request).await;
+    assert_eq!(status, 200, "{body}");
+    let excluded = body["excluded"].as_array().unwrap();
+    assert!(!excluded.is_empty(), "{body}");
+    let note = page
+        .run(
+            "return document.getElementById('solutions-note').textContent;",
+            vec![],
+        )
+        .await;
+    let note = note.as_str().unwrap();
+    assert!(note.contains("Left out under the conditions"), "{note}");
+    for dropped in excluded {
+        assert!(note.contains(dropped["reason"].as_str().unwrap()), "{note}");
+    }
 
     // Clicking the pin again with the Pin tool removes it; Clear removes the rest.
     page.key('p', false).await;
@@ -429,6 +453,7 @@ async fn the_curvature_comb_agrees_with_finite_differences() {
     assert_eq!(count(&page, "#scene .comb-teeth").await, 0);
     page.click_id("layer-comb").await;
     page.settle().await;
+    super::steps::screenshot(&browser.client, "editor-comb.png", false).await;
     let d = page
         .run(
             "const p = document.querySelector('#scene .comb-teeth'); return p ? p.getAttribute('d') : '';",
