@@ -22,6 +22,7 @@ mod editor {
     pub mod resilience;
     pub mod static_files;
     pub mod steps;
+    pub mod third_release;
     pub mod timing;
     pub mod view;
 }

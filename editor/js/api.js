@@ -52,8 +52,10 @@ function retryAfter(response) {
   return Number.isFinite(seconds) ? Math.min(Math.max(seconds, 0), LONGEST_WAIT_SECONDS) : null;
 }
 
-async function post(path, body) {
-  const headers = { "Content-Type": "application/json", Accept: "application/json" };
+/** POSTs `body` as JSON; the answer is parsed as JSON, or kept as text with `text` (a file
+ * export). */
+async function post(path, body, { text: asText = false } = {}) {
+  const headers = { "Content-Type": "application/json", Accept: asText ? "*/*" : "application/json" };
   const key = apiKey();
   if (key) {
     headers.Authorization = `Bearer ${key}`;
@@ -74,6 +76,7 @@ async function post(path, body) {
       continue;
     }
     connectionListener({ state: "ok", path });
+    if (asText && response.ok) return { ok: true, value: await response.text() };
     return answer(path, response);
   }
 }
@@ -118,6 +121,26 @@ export function evaluatePolyline(curve, tolerance) {
   return post("/v1/curves/evaluate", { curve, tolerance });
 }
 
+/** POST /v1/curves/interpolate: the cubic (or lower degree, for few points) through `points`. */
+export function interpolate(points) {
+  return post("/v1/curves/interpolate", { points, degree: Math.min(3, points.length - 1) });
+}
+
+/** POST /v1/curves/approximate: a curve within `tolerance` of every point. */
+export function approximate(points, tolerance) {
+  return post("/v1/curves/approximate", { points, tolerance, degree: Math.min(3, points.length - 1) });
+}
+
+/** POST /v1/curves/import: every B-spline curve of a STEP or DXF file's text. */
+export function importFile(format, data) {
+  return post("/v1/curves/import", { format, data });
+}
+
+/** POST /v1/curves/export: the STEP or DXF file of `curves`, as text. */
+export function exportFile(format, curves) {
+  return post("/v1/curves/export", { format, curves }, { text: true });
+}
+
 /** POST /v1/curves/bezier: the Bézier pieces and, when SVG can draw it, an SVG path. */
 export function bezier(curve) {
   return post("/v1/curves/bezier", { curve });
@@ -133,21 +156,38 @@ export function insertKnotsForEditing(curve, parameter) {
   return post("/v1/curves/insert-knots", { curve, editable_at: { parameter } });
 }
 
-/** POST /v1/shape/regions: the regions' polygons of both sides at `parameter`, for the same
- * `keep_domain` as solving (the default, sent explicitly), within `tolerance` of the true
- * boundaries. */
-export function regions(curve, parameter, tolerance) {
-  return post("/v1/shape/regions", { curve, parameter, side: "both", keep_domain: true, tolerance });
+/** POST /v1/curves/evaluate at `parameters` with the first derivatives and the curvature
+ * (for the tangent marks and the curvature comb). */
+export function evaluateWithCurvature(curve, parameters) {
+  return post("/v1/curves/evaluate", { curve, parameters, derivatives: 1, curvature: true });
+}
+
+/** The conditions every solve, membership and regions request of the page carries: the
+ * constraints (pins, tangent locks) and the fixed control points, when there are any. */
+function withConditions(body, { constraints = [], fixed = [] } = {}) {
+  if (constraints.length > 0) body.constraints = constraints;
+  if (fixed.length > 0) body.fixed_control_points = fixed;
+  return body;
+}
+
+/** POST /v1/shape/regions: the reachable sets at `parameter` of the knot pairs (both sides)
+ * and the weight pairs, for the same `keep_domain`, `methods` and fixed control points as
+ * solving (so that every drawn region holds only targets solve reaches), within `tolerance`
+ * of the true boundaries. */
+export function regions(curve, parameter, tolerance, { methods, fixed = [] }) {
+  const body = { curve, parameter, side: "both", keep_domain: true, methods, tolerance };
+  if (fixed.length > 0) body.fixed_control_points = fixed;
+  return post("/v1/shape/regions", body);
 }
 
 /**
  * POST /v1/shape/solve with `nearest`. `family` (optional) narrows the request to one way of
  * moving the point — `{ method, side, region }` — so the answer holds just that family's
  * solution; `svgPaths` asks for each solution's new curve as an SVG path (so a drag's
- * preview needs no second request).
+ * preview needs no second request); `conditions` ({ constraints, fixed }) are sent as they are.
  */
-export function solve(curve, parameter, target, { methods, family = null, svgPaths = false }) {
-  const body = { curve, parameter, target, side: "both", nearest: true, methods };
+export function solve(curve, parameter, target, { methods, family = null, svgPaths = false, conditions = {} }) {
+  const body = withConditions({ curve, parameter, target, side: "both", keep_domain: true, nearest: true, methods }, conditions);
   if (family) {
     body.methods = [family.method];
     if (family.method === "knots") {

@@ -15,21 +15,56 @@ import { fit, needsFit } from "./viewport.js";
  * boundary. */
 const REGION_PIXELS = 0.5;
 
-/** The regions answer at `parameter` of `curve`, drawn within REGION_PIXELS at `frame`. */
-export function regionsAt(curve, parameter, frame) {
-  return api.regions(curve, parameter, REGION_PIXELS / frame.scale);
+/** Teeth of the curvature comb: TEETH_PER_SPAN per knot span, within these bounds. */
+const FEWEST_TEETH = 200;
+const MOST_TEETH = 2000;
+const TEETH_PER_SPAN = 8;
+
+/** The methods whose reachable sets the page draws for `curve` in `state`: the ticked knot
+ * pairs and weights that can edit it, on a planar curve, and none while constraints hold
+ * (the regions endpoint does not take them, so a drawn region might hold targets that a
+ * constraint excludes; the solver decides then). */
+export function regionMethods(curve, state) {
+  if (state.constraints.length > 0 || geometry.dimension(curve) !== 2) return [];
+  return geometry.usableMethods(curve, state.methods).filter((method) => method === "knots" || method === "weights");
 }
 
-/** The drawing of `curve` and, with the knots method on, its reachable regions at
- * `parameter`; or { problem } when the drawing cannot be had. */
-export async function drawn(curve, parameter, methods) {
-  const wantsRegions = parameter !== undefined && methods.includes("knots") && !geometry.editingRefusal(curve);
-  const frame = store.get().view.frame;
-  const [drawing, regions] = await Promise.all([drawingOf(curve), wantsRegions ? regionsAt(curve, parameter, frame) : null]);
+/** The regions answer at `parameter` of `curve` for the methods and fixed control points of
+ * `state`, drawn within REGION_PIXELS at its frame; null when no region is drawn. */
+export function regionsAt(curve, parameter, state) {
+  const methods = regionMethods(curve, state);
+  if (methods.length === 0) return Promise.resolve(null);
+  return api.regions(curve, parameter, REGION_PIXELS / state.view.frame.scale, { methods, fixed: state.fixed });
+}
+
+/** The marks of `state`'s constraints on `curve` ({ point, tangent } each, same order) and
+ * the curvature comb's teeth ({ points, teeth: the unit normals times the curvature }), when
+ * shown: one evaluate request each. */
+async function overlays(curve, state) {
+  const [lo, hi] = geometry.domain(curve);
+  const spans = geometry.knotValuesInDomain(curve).length - 1;
+  const teeth = Math.min(Math.max(TEETH_PER_SPAN * spans, FEWEST_TEETH), MOST_TEETH);
+  const comb = state.layers.comb ? Array.from({ length: teeth + 1 }, (_, i) => lo + ((hi - lo) * i) / teeth) : [];
+  const [marks, combAnswer] = await Promise.all([
+    state.constraints.length > 0 ? api.evaluateWithCurvature(curve, state.constraints.map((c) => c.parameter)) : null,
+    comb.length > 0 ? api.evaluateWithCurvature(curve, comb) : null,
+  ]);
+  return {
+    conditionMarks: marks?.ok ? marks.value.points.map((point, i) => ({ point, tangent: marks.value.derivatives[0][i] })) : null,
+    comb: combAnswer?.ok ? geometry.combOf(combAnswer.value) : null,
+  };
+}
+
+/** The drawing of `curve` and, for the region methods of `state` (regionMethods), its
+ * reachable regions at `parameter`, the marks of its constraints and its curvature comb;
+ * or { problem } when the drawing cannot be had. */
+export async function drawn(curve, parameter, state) {
+  const wantsRegions = parameter !== undefined;
+  const [drawing, regions, extra] = await Promise.all([drawingOf(curve), wantsRegions ? regionsAt(curve, parameter, state) : null, overlays(curve, state)]);
   if (drawing.problem) return { problem: drawing.problem };
   return {
-    drawing,
-    regions: regions?.ok ? geometry.reachableRegions(curve, regions.value) : null,
+    drawing: { ...drawing, ...extra },
+    regions: regions?.ok ? regions.value : null,
     regionsProblem: regions && !regions.ok ? regions.problem : null,
   };
 }
@@ -61,7 +96,7 @@ function frameFor(state, curve, always) {
 export function commitCurve(curve, { replace = false, pick = null, lastSolutions = null, family = null, lastTarget = null, message = "" }) {
   return store.task(async () => {
     const mine = store.nextGeneration();
-    const result = await drawn(curve, pick?.parameter, store.get().methods);
+    const result = await drawn(curve, pick?.parameter, store.get());
     if (!store.isCurrent(mine)) return false;
     const state = store.get();
     if (result.problem) {
@@ -110,7 +145,7 @@ export function historyStep(step) {
   return store.task(async () => {
     const mine = store.nextGeneration();
     const curve = model.currentCurve(next);
-    const result = await drawn(curve, undefined, next.methods);
+    const result = await drawn(curve, undefined, next);
     if (!store.isCurrent(mine)) return false;
     const now = store.get();
     if (result.problem) {
@@ -127,14 +162,14 @@ export function historyStep(step) {
 export function loadCurve(curve, message, source = null) {
   return store.task(async () => {
     const mine = store.nextGeneration();
-    const result = await drawn(curve, undefined, store.get().methods);
+    const result = await drawn(curve, undefined, { ...store.get(), constraints: [], fixed: [] });
     if (!store.isCurrent(mine)) return false;
     const state = store.get();
     if (result.problem) {
       store.set({ ...state, message: "", error: failureMessage(result.problem, "Cannot load this curve: ", source) });
       return false;
     }
-    const refusal = geometry.editingRefusal(curve);
+    const refusal = geometry.knotsRefusal(curve);
     store.set({
       ...model.load(state, curve),
       drawing: result.drawing,
@@ -153,15 +188,15 @@ export function refresh(message = "") {
     const mine = store.nextGeneration();
     const state = store.get();
     const curve = model.editBase(state);
-    const result = await drawn(curve, state.pick?.parameter, state.methods);
+    const result = await drawn(curve, state.pick?.parameter, state);
     if (!store.isCurrent(mine)) return false;
     const now = store.get();
     if (result.problem) {
       store.set({ ...now, message: "", error: failureMessage(result.problem) });
       return false;
     }
-    const refusal = geometry.editingRefusal(model.currentCurve(now));
-    store.set({ ...now, drawing: result.drawing, regions: result.regions, message: refusal ?? message, error: "" });
+    const refusal = geometry.knotsRefusal(model.currentCurve(now));
+    store.set({ ...now, drawing: result.drawing, regions: result.regions, message: message || (refusal ?? ""), error: result.regionsProblem ? describeProblem(result.regionsProblem) : "" });
     return true;
   });
 }

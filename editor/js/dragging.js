@@ -56,7 +56,9 @@ export function startPointDrag(press) {
   const state = store.get();
   if (!state.pick || live) return;
   const base = model.editBase(state);
-  const piece = geometry.pieceAtParameter(base, state.pick.parameter);
+  // Under constraints or fixed control points the whole curve is solved: a local piece
+  // would not carry the conditions outside it.
+  const piece = model.constrained(state) ? { curve: base, poleOffset: 0, whole: true } : geometry.pieceAtParameter(base, state.pick.parameter);
   begin({ kind: "point", base, piece, parameter: state.pick.parameter, origin: state.pick.point, press, family: state.family, alternatives: null, solution: null, nearest: null });
   store.set({ ...state, drag: { kind: "point", target: null, solution: null, family: state.family }, lastSolutions: null, message: "", error: "" });
 }
@@ -66,6 +68,15 @@ export function startPoleDrag(index, press) {
   const state = store.get();
   if (live) return;
   const base = model.editBase(state);
+  const refusal = state.fixed.includes(index)
+    ? `Control point ${index} is fixed: click it with the Pin tool to free it.`
+    : geometry.poleMovesConstraint(base, index, state.constraints)
+      ? `Control point ${index} would move a pinned point or a locked tangent: drag the curve instead (the solver keeps them), or remove them.`
+      : null;
+  if (refusal) {
+    store.set({ ...state, message: refusal, error: "" });
+    return;
+  }
   const piece = geometry.pieceAtPole(base, index);
   const origin = base.control_points[index];
   begin({ kind: "pole", base, piece, index, origin: [origin[0], origin[1]], press, point: null });
@@ -77,12 +88,14 @@ export function startPoleDrag(index, press) {
 function draggedTo(point) {
   const state = store.get();
   const moved = [live.origin[0] + point[0] - live.press[0], live.origin[1] + point[1] - live.press[1]];
-  return snap(moved, state.snap, {
+  const snapped = snap(moved, state.snap, {
     frame: state.view.frame,
     poles: live.base.control_points,
     knotPoints: state.drawing?.knotPoints ?? [],
     skipPole: live.kind === "pole" ? live.index : -1,
   });
+  // A point of a 3D curve moves in its x–y plane (a pole keeps its z in withPole).
+  return live.kind === "point" ? { ...snapped, point: geometry.lifted(snapped.point, live.origin) } : snapped;
 }
 
 /** The pointer is at `point` (curve coordinates); `stamp` is the event's timeStamp. */
@@ -136,8 +149,10 @@ function movedKnots(drag, solution) {
   return solution.changed_knots.map((index) => [index + offset, solution.knots[index]]);
 }
 
-/** The moved control points of a pole solution of the piece, with their neighbours. */
-function movedPoles(solution) {
+/** The moved control points of a pole solution of the piece, with their neighbours; the two
+ * poles whose weights a weight solution changes. */
+function movedPoles(solution, piece) {
+  if (solution.method === "weights") return { points: [], moved: solution.poles.map((k) => piece.control_points[k]) };
   if (solution.method !== "control_points") return null;
   const changed = solution.changed_control_points;
   const points = solution.control_points;
@@ -148,7 +163,8 @@ function movedPoles(solution) {
 
 /** One solve of a point drag; resolves to whether a preview was drawn. */
 async function solveMove(drag, move, timing) {
-  const answer = await api.solve(drag.piece.curve, drag.parameter, move.target, { methods: store.get().methods, family: drag.family, svgPaths: true });
+  const now = store.get();
+  const answer = await api.solve(drag.piece.curve, drag.parameter, move.target, { methods: model.methodsFor(now), family: drag.family, svgPaths: true, conditions: model.conditions(now) });
   timing.answered = performance.now();
   if (live !== drag) return false;
   if (!answer.ok) {
@@ -161,10 +177,11 @@ async function solveMove(drag, move, timing) {
   const solutions = answer.value.solutions.length > 0 ? answer.value.solutions : nearest?.solutions ?? [];
   if (!drag.family && solutions.length > 0) {
     const chosen = model.defaultChoice(solutions);
-    drag.family = geometry.familyOf(solutions[chosen]);
+    drag.family = geometry.familyOf(solutions[chosen], drag.piece.poleOffset);
     drag.alternatives = solutions;
   }
-  const solution = drag.family ? solutions.find((candidate) => geometry.inFamily(candidate, drag.family)) : null;
+  const offset = drag.piece.poleOffset;
+  const solution = drag.family ? solutions.find((candidate) => geometry.inFamily(candidate, drag.family, offset)) : null;
   const state = store.get();
   if (!solution) {
     drag.failed = true;
@@ -182,7 +199,7 @@ async function solveMove(drag, move, timing) {
     previewDrawing = drawing.problem ? null : drawing;
   }
   const alternatives = drag.alternatives ?? [solution];
-  const keptIndex = alternatives.findIndex((candidate) => geometry.inFamily(candidate, drag.family));
+  const keptIndex = alternatives.findIndex((candidate) => geometry.inFamily(candidate, drag.family, offset));
   store.set({
     ...store.get(),
     drag: {
@@ -194,8 +211,9 @@ async function solveMove(drag, move, timing) {
       family: drag.family,
       alternatives,
       keptIndex,
+      poleOffset: offset,
       previewDrawing,
-      movedPoles: movedPoles(solution),
+      movedPoles: movedPoles(solution, drag.piece.curve),
       previewKnots: movedKnots(drag, solution),
     },
     message: nearest ? "Outside the reachable set: the point follows the nearest reachable target." : "",
@@ -252,7 +270,7 @@ export function cancel() {
 /** During a point drag: keep the family of the first answer's solution `index` instead. */
 export function switchFamily(index) {
   if (!live || live.kind !== "point" || !live.alternatives?.[index]) return false;
-  live.family = geometry.familyOf(live.alternatives[index]);
+  live.family = geometry.familyOf(live.alternatives[index], live.piece.poleOffset);
   live.answered = null;
   if (live.latest && !live.inFlight) work(live);
   return true;
@@ -285,11 +303,13 @@ function finishPole(drag) {
  * of every solution there (for choosing another one after the release). */
 function finishPoint(drag) {
   const target = drag.answered.target;
-  const methods = store.get().methods;
+  const state = store.get();
+  const methods = model.methodsFor(state);
+  const conditions = model.conditions(state);
   return store.task(async () => {
     const [own, all] = await Promise.all([
-      drag.piece.whole ? null : api.solve(drag.base, drag.parameter, target, { methods, family: drag.family }),
-      api.solve(drag.base, drag.parameter, target, { methods }),
+      drag.piece.whole ? null : api.solve(drag.base, drag.parameter, target, { methods, family: drag.family, conditions }),
+      api.solve(drag.base, drag.parameter, target, { methods, conditions }),
     ]);
     let solution = drag.solution;
     if (own) {
@@ -307,7 +327,7 @@ function finishPoint(drag) {
     if (chosen < 0) chosen = 0;
     return commitCurve(geometry.applySolution(drag.base, solution), {
       pick: { parameter: drag.parameter, point: solution.point },
-      lastSolutions: { solutions, chosen, nearest: all.ok ? all.value.nearest ?? null : null, base: drag.base, target },
+      lastSolutions: { solutions, chosen, nearest: all.ok ? all.value.nearest ?? null : null, excluded: all.ok ? all.value.excluded ?? [] : [], base: drag.base, target },
       family: drag.family,
       lastTarget: target,
       message: `Committed: ${geometry.describeSolution(solution)}.`,

@@ -1,9 +1,13 @@
-// Curves in and out as JSON text: pasted or opened (a curve object, or an object with a
-// `curve`), and exported. Errors name the line and column of the user's own text.
+// Curves in and out: JSON text pasted or opened (a curve object, or an object with a
+// `curve`), exported as JSON; STEP and DXF files opened through /v1/curves/import (the first
+// curve loaded, the others offered in a list) and exported through /v1/curves/export.
+// Errors name the line and column of the user's own text.
 
+import * as api from "./api.js";
+import * as geometry from "./geometry.js";
 import * as model from "./state.js";
 import * as store from "./store.js";
-import { loadCurve } from "./committing.js";
+import { failureMessage, loadCurve } from "./committing.js";
 import { describeSyntaxError, textSource } from "./problems.js";
 
 /** The curve in `text` and where it sits in it, or { error }. */
@@ -36,9 +40,96 @@ export function loadText(text, message = "Curve loaded.") {
 export function exportCurve(elements) {
   const text = JSON.stringify(model.currentCurve(store.get()), null, 2);
   elements.json.value = text;
-  const link = elements.download;
-  if (link.href) URL.revokeObjectURL(link.href);
-  link.href = URL.createObjectURL(new Blob([text], { type: "application/json" }));
-  link.hidden = false;
+  offer(elements, text, "curve.json", "application/json");
   store.set({ ...store.get(), message: "Exported: the curve is in the text field and in the download link.", error: "" });
+}
+
+/** The file formats the service reads and writes, by file name extension. */
+const FORMATS = { step: "step", stp: "step", p21: "step", dxf: "dxf" };
+
+/** The format of a file called `name` ("step", "dxf"), or null (JSON). */
+export function formatOf(name) {
+  const extension = name.toLowerCase().split(".").pop();
+  return FORMATS[extension] ?? null;
+}
+
+/** An imported curve as the page edits it: the full knot vector instead of distinct values
+ * with multiplicities, 2D when every z is 0 (DXF writes planar curves so), without `source`.
+ * A periodic curve keeps its form. */
+export function editable(imported) {
+  const { source: _source, ...curve } = imported;
+  const planar = curve.control_points.every((p) => p.length === 2 || p[2] === 0);
+  const control_points = planar ? curve.control_points.map((p) => [p[0], p[1]]) : curve.control_points;
+  if (curve.periodic) return { ...curve, control_points };
+  const plain = { degree: curve.degree, control_points, knots: geometry.fullKnots(curve) };
+  if (curve.weights) plain.weights = curve.weights;
+  return plain;
+}
+
+/** The curves of the last STEP or DXF file opened (for the list). */
+let imported = [];
+
+function describeImported(curve, index) {
+  return `${index + 1}. ${curve.source ?? ""} · degree ${curve.degree} · ${curve.control_points.length} control points${curve.weights ? " · rational" : ""}`;
+}
+
+/** Opens the file `name` with `text`: JSON as pasted text, STEP and DXF through the service
+ * (the first curve loaded; with several, a list offers the others). */
+export function openFile(name, text, elements) {
+  const format = formatOf(name);
+  if (!format) {
+    elements.json.value = text;
+    return loadText(text, `Opened ${name}.`);
+  }
+  return store.task(async () => {
+    const answer = await api.importFile(format, text);
+    if (!answer.ok) {
+      store.set({ ...store.get(), message: "", error: failureMessage(answer.problem, `Cannot read ${name}: `) });
+      return false;
+    }
+    const { curves, skipped } = answer.value;
+    const others = skipped > 0 ? ` (${skipped} other curve entities skipped)` : "";
+    if (curves.length === 0) {
+      store.set({ ...store.get(), message: "", error: `No B-spline curve in ${name}${others}.` });
+      return false;
+    }
+    imported = curves;
+    const list = elements.imported;
+    list.replaceChildren(...curves.map((curve, index) => new Option(describeImported(curve, index), String(index))));
+    list.hidden = curves.length < 2;
+    const more = curves.length > 1 ? `: curve 1 of ${curves.length} (choose another in the list)` : "";
+    return loadCurve(editable(curves[0]), `Opened ${name}${more}${others}.`);
+  });
+}
+
+/** Loads curve `index` of the last file opened. */
+export function chooseImported(index) {
+  const curve = imported[index];
+  if (!curve) return Promise.resolve(false);
+  return loadCurve(editable(curve), `Curve ${index + 1} of ${imported.length} (${curve.source ?? "no name"}).`);
+}
+
+/** Offers `text` as the download `name` in the page's download link (a data: URL: the
+ * file is in the link itself, nothing to revoke). */
+function offer(elements, text, name, type) {
+  const link = elements.download;
+  link.href = `data:${type};charset=utf-8,${encodeURIComponent(text)}`;
+  link.download = name;
+  link.textContent = `Download ${name}`;
+  link.hidden = false;
+}
+
+/** Exports the committed curve as a STEP or DXF file (written by the service). */
+export function exportFile(format, elements) {
+  return store.task(async () => {
+    const answer = await api.exportFile(format, [model.currentCurve(store.get())]);
+    if (!answer.ok) {
+      store.set({ ...store.get(), message: "", error: failureMessage(answer.problem, "Cannot export: ") });
+      return false;
+    }
+    const name = format === "step" ? "curve.step" : "curve.dxf";
+    offer(elements, answer.value, name, format === "step" ? "model/step" : "image/vnd.dxf");
+    store.set({ ...store.get(), message: `Exported: ${name} (written by the service) is in the download link.`, error: "" });
+    return true;
+  });
 }

@@ -2,8 +2,13 @@
 // convention, domain, dimension, extent, the local piece around a parameter or a pole, and
 // the curve a solution describes.
 
-/** The full knot vector (control points + degree + 1 values) of either convention. */
+/** The full knot vector (control points + degree + 1 values) of either convention, or of
+ * distinct values with multiplicities. */
 export function fullKnots(curve) {
+  if (curve.multiplicities) {
+    // Distinct values with multiplicities (STEP's form): each value repeated.
+    return curve.knots.flatMap((u, i) => Array(curve.multiplicities[i]).fill(u));
+  }
   const full = curve.control_points.length + curve.degree + 1;
   if (curve.knots.length === full) {
     return curve.knots.slice();
@@ -46,15 +51,34 @@ export function dimension(curve) {
   return curve.control_points[0] ? curve.control_points[0].length : 2;
 }
 
-/** Whether the editor can move points of `curve` through the solver; else the reason. */
-export function editingRefusal(curve) {
-  if (dimension(curve) !== 2) {
-    return "This is a 3D curve: it is shown in its x–y projection. Drag its control points (z is kept); moving curve points needs a target in the control triangle's plane (use the API).";
-  }
+/** Why the knot-pair method cannot edit `curve` (it moves cubic, planar curves), or null.
+ * The control-point and weight methods take any degree, 2D or 3D. */
+export function knotsRefusal(curve) {
   if (curve.degree !== 3) {
-    return `This curve has degree ${curve.degree}: the knot-pair method edits cubic curves only. Drag its control points to change it.`;
+    return `This curve has degree ${curve.degree}: the knot-pair method edits cubic curves only, so it is off; control points and weights move its points.`;
+  }
+  if (dimension(curve) !== 2) {
+    return "This is a 3D curve, shown and edited in its x–y projection (z is kept): the knot-pair method is off; control points and weights move its points.";
   }
   return null;
+}
+
+/** The methods of `methods` that can edit `curve` (the knot pairs only on planar cubics). */
+export function usableMethods(curve, methods) {
+  return knotsRefusal(curve) ? methods.filter((method) => method !== "knots") : methods;
+}
+
+/** `curve` projected onto the x–y plane (the same weights: the projection of a NURBS curve
+ * is the NURBS curve of the projected control points). A planar curve is itself. */
+export function projected(curve) {
+  if (dimension(curve) !== 3) return curve;
+  return { ...curve, control_points: curve.control_points.map((p) => [p[0], p[1]]) };
+}
+
+/** A target in the drawing's x–y plane lifted to the curve's dimension: a 3D curve's point
+ * keeps the z of `from` (the point it moves). */
+export function lifted(target, from) {
+  return from && from.length === 3 && target.length === 2 ? [target[0], target[1], from[2]] : target;
 }
 
 /** [[xmin, ymin], [xmax, ymax]] of the control polygon's x–y projection. */
@@ -70,10 +94,13 @@ export function extent(curve) {
   return [low, high];
 }
 
-/** The curve after `solution` of /v1/shape/solve: new knots or new control points. */
+/** The curve after `solution` of /v1/shape/solve: new knots, control points or weights. */
 export function applySolution(curve, solution) {
   if (solution.method === "knots") {
     return { ...curve, knots: solution.knots.slice() };
+  }
+  if (solution.method === "weights") {
+    return { ...curve, weights: solution.weights.slice() };
   }
   return { ...curve, control_points: solution.control_points.map((p) => p.slice()) };
 }
@@ -86,31 +113,10 @@ export function withPole(curve, index, point) {
   return { ...curve, control_points };
 }
 
-/**
- * Whether a knot-pair region survives `keep_domain` (the solver's default): neither the
- * moved knot nor the pair is an end knot of the domain (full indices p and n). The solver
- * drops every solution that moves those, so such regions hold no reachable target.
- */
-export function keepsDomain(curve, candidate, region) {
-  const offset = isTrimmed(curve) ? 1 : 0;
-  const ends = [curve.degree, curve.control_points.length];
-  return [candidate.moved_knot, ...region.knots].every((index) => !ends.includes(index + offset));
-}
-
-/** The regions answer with only what solving with `keep_domain` can reach. */
-export function reachableRegions(curve, regionsAnswer) {
-  return {
-    ...regionsAnswer,
-    candidates: regionsAnswer.candidates.map((candidate) => ({
-      ...candidate,
-      regions: candidate.applicable ? candidate.regions.filter((region) => keepsDomain(curve, candidate, region)) : [],
-    })),
-  };
-}
-
-/** Whether a regions answer has a region the solver can use with the domain kept. */
-export function hasUsableRegion(curve, regionsAnswer) {
-  return reachableRegions(curve, regionsAnswer).candidates.some((candidate) => candidate.regions.length > 0);
+/** Whether a regions answer has a knot-pair region (one the solver reaches: the service
+ * draws only those, with the same `keep_domain` and `methods` as solving). */
+export function hasKnotRegion(regionsAnswer) {
+  return regionsAnswer.candidates.some((candidate) => candidate.regions?.length > 0);
 }
 
 /** Poles a local piece keeps on each side beyond those a move can change. */
@@ -174,33 +180,69 @@ export function drawingTolerance(curve) {
   return size > 0 ? size / 2000 : 1e-3;
 }
 
-/** The way a solution moves the point: its method, and for knot pairs the side and region.
+/** The way a solution moves the point: its method, for knot pairs the side and region,
+ * for weights the pair of poles (numbered on the whole curve: a solution of a local piece
+ * whose first pole is the curve's `poleOffset` gives the same family as the whole curve's).
  * A drag keeps one family from its first answer to its release. */
-export function familyOf(solution) {
-  return solution.method === "knots"
-    ? { method: "knots", side: solution.side, region: solution.region }
-    : { method: solution.method };
+export function familyOf(solution, poleOffset = 0) {
+  if (solution.method === "knots") return { method: "knots", side: solution.side, region: solution.region };
+  if (solution.method === "weights") return { method: "weights", poles: solution.poles.map((k) => k + poleOffset) };
+  return { method: solution.method };
 }
 
-/** Whether `solution` belongs to `family`. */
-export function inFamily(solution, family) {
-  const own = familyOf(solution);
-  return own.method === family.method && own.side === family.side && own.region === family.region;
+/** Whether `solution` (of a piece starting at pole `poleOffset`) belongs to `family`. */
+export function inFamily(solution, family, poleOffset = 0) {
+  const own = familyOf(solution, poleOffset);
+  return own.method === family.method && own.side === family.side && own.region === family.region && String(own.poles) === String(family.poles);
 }
 
-/** A family in words: "knots · Ω2 (right)" or "control points". */
+/** A family in words: "knots · Ω2 (right)", "weights · poles 3, 4" or "control points". */
 export function describeFamily(family) {
   if (family.method === "knots") {
     return `knots · ${family.region.replace("omega", "Ω")} (${family.side})`;
   }
+  if (family.method === "weights") return `weights · poles ${family.poles.join(", ")}`;
   return family.method.replace("_", " ");
 }
 
-/** A short description of a solution for the list. */
-export function describeSolution(solution) {
+/** A short description of a solution for the list (of a local piece whose first pole is
+ * the curve's `poleOffset`: poles numbered on the whole curve). */
+export function describeSolution(solution, poleOffset = 0) {
   const deviation = solution.max_deviation.toPrecision(3);
   if (solution.method === "knots") {
     return `${describeFamily(familyOf(solution))} · knots ${solution.changed_knots.join(", ")} · max deviation ${deviation}`;
   }
-  return `control points · poles ${solution.changed_control_points.join(", ")} · max deviation ${deviation}`;
+  if (solution.method === "weights") {
+    const weights = solution.poles.map((k) => +solution.weights[k].toPrecision(4)).join(", ");
+    return `weights · poles ${solution.poles.map((k) => k + poleOffset).join(", ")} → ${weights} · max deviation ${deviation}`;
+  }
+  return `control points · poles ${solution.changed_control_points.map((k) => k + poleOffset).join(", ")} · max deviation ${deviation}`;
+}
+
+/** The curvature comb of an evaluate answer with derivatives and curvature: per parameter
+ * the curve point and its unit normal (the x–y tangent turned left) times the curvature κ
+ * (signed for planar curves, so teeth point to the centre of curvature; the magnitude for 3D
+ * ones). A tangent of zero length has no tooth. */
+export function combOf(answer) {
+  const points = [];
+  const teeth = [];
+  answer.points.forEach((point, i) => {
+    const [dx, dy] = answer.derivatives[0][i];
+    const length = Math.hypot(dx, dy);
+    const kappa = answer.curvature[i];
+    if (!(length > 0) || !Number.isFinite(kappa)) return;
+    points.push([point[0], point[1]]);
+    teeth.push([(-dy / length) * kappa, (dx / length) * kappa]);
+  });
+  return { points, teeth };
+}
+
+/** Whether moving control point `index` changes the curve at some constraint's parameter:
+ * its basis function is non-zero on [u_index, u_index+p+1] (ends included, so that the
+ * derivatives there are counted too); knots in a form the page does not read: any constraint. */
+export function poleMovesConstraint(curve, index, constraints) {
+  if (!hasPlainKnots(curve)) return constraints.length > 0;
+  const knots = fullKnots(curve);
+  const [from, to] = [knots[index], knots[index + curve.degree + 1]];
+  return constraints.some((c) => c.parameter >= from && c.parameter <= to);
 }

@@ -35,6 +35,13 @@ export function bind(elements, actions) {
   function grabbed(event) {
     if (actions.tool() === "pan" || spaceHeld || event.button === 1) return { kind: "pan" };
     const classes = event.target.classList;
+    if (actions.tool() === "points") return { kind: "point" };
+    if (actions.tool() === "pin" || actions.tool() === "tangent") {
+      // A click marks (pins, locks a tangent, fixes a control point); a drag pans.
+      if (classes?.contains("pole-grip")) return { kind: "mark", index: Number(event.target.dataset.index) };
+      if (classes?.contains("curve-hit") || classes?.contains("picked")) return { kind: "mark" };
+      return { kind: "background" };
+    }
     if (classes?.contains("picked")) return { kind: "dot" };
     if (classes?.contains("pole-grip")) return { kind: "pole", index: Number(event.target.dataset.index) };
     if (classes?.contains("curve-hit")) return { kind: "curve" };
@@ -122,6 +129,7 @@ export function bind(elements, actions) {
     if (!g.moved) {
       if (Math.hypot(pixel[0] - g.startPixel[0], pixel[1] - g.startPixel[1]) < DRAG_THRESHOLD) return;
       g.moved = true;
+      if (g.kind === "mark" || g.kind === "point") g.kind = "background";
       if (g.kind === "pan" || g.kind === "background") {
         document.body.dataset.panning = "true";
         actions.panBy([pixel[0] - g.startPixel[0], pixel[1] - g.startPixel[1]]);
@@ -164,6 +172,10 @@ export function bind(elements, actions) {
       else actions.release();
     } else if (!g.moved && g.kind === "background" && !cancelled) {
       actions.dropPick();
+    } else if (!g.moved && g.kind === "mark" && !cancelled) {
+      actions.mark(g.press, g.index);
+    } else if (!g.moved && g.kind === "point" && !cancelled) {
+      actions.addSketchPoint(g.press);
     }
   }
   canvas.addEventListener("pointerup", (event) => gestureEnd(event, false));
@@ -226,6 +238,18 @@ export function bind(elements, actions) {
       actions.setTool("edit");
     } else if (lower === "h") {
       actions.setTool("pan");
+    } else if (lower === "p") {
+      actions.setTool("pin");
+    } else if (lower === "t") {
+      actions.setTool("tangent");
+    } else if (lower === "d") {
+      actions.setTool("points");
+    } else if (key === "Enter" && onDrawing && actions.tool() === "points") {
+      event.preventDefault();
+      actions.finishSketch();
+    } else if (key === "Backspace" && onDrawing && actions.tool() === "points") {
+      event.preventDefault();
+      actions.dropSketchPoint();
     } else if (/^[1-9]$/.test(key)) {
       actions.choose(Number(key) - 1);
     }
@@ -256,10 +280,12 @@ export function bind(elements, actions) {
       const text = await file.text();
       // Cleared, so that opening the same file again is a change too.
       elements.openFile.value = "";
-      elements.json.value = text;
-      actions.loadText(text, `Opened ${file.name}.`);
+      actions.openFile(file.name, text);
     }
   });
+  elements.exportStep.addEventListener("click", () => actions.exportFile("step"));
+  elements.exportDxf.addEventListener("click", () => actions.exportFile("dxf"));
+  elements.imported.addEventListener("change", () => actions.chooseImported(Number(elements.imported.value)));
   elements.solutions.addEventListener("change", (event) => {
     if (event.target.name === "solution") actions.choose(Number(event.target.value));
   });
@@ -278,6 +304,12 @@ export function bind(elements, actions) {
     });
   }
   elements.retry.addEventListener("click", () => actions.retry());
+  elements.clearConditions.addEventListener("click", () => actions.clearConditions());
+  elements.sketchFinish.addEventListener("click", () => actions.finishSketch());
+  elements.sketchDiscard.addEventListener("click", () => actions.discardSketch());
+  elements.sketchTolerance.addEventListener("keydown", (event) => {
+    if (event.key === "Enter") actions.finishSketch();
+  });
   elements.apiKey.value = actions.apiKey();
   elements.apiKey.addEventListener("change", () => actions.setApiKey(elements.apiKey.value.trim()));
 }

@@ -5,6 +5,7 @@
 
 import * as api from "./api.js";
 import * as committing from "./committing.js";
+import * as conditions from "./conditions.js";
 import * as connection from "./connection.js";
 import * as dragging from "./dragging.js";
 import * as files from "./files.js";
@@ -12,6 +13,7 @@ import * as geometry from "./geometry.js";
 import * as model from "./state.js";
 import * as picking from "./picking.js";
 import * as precision from "./precision.js";
+import * as sketching from "./sketching.js";
 import * as store from "./store.js";
 import * as viewport from "./viewport.js";
 import { bind } from "./interaction.js";
@@ -27,6 +29,9 @@ const IDS = {
   openFile: "open-file", download: "download", apiKey: "api-key", methods: "methods", snaps: "snaps",
   layers: "layers", shortcuts: "shortcuts", banner: "banner", bannerText: "banner-text", retry: "retry",
   readout: "readout", targetX: "target-x", targetY: "target-y", moveTo: "move-to",
+  exportStep: "export-step", exportDxf: "export-dxf", imported: "imported",
+  sketchTolerance: "sketch-tolerance", sketchFinish: "sketch-finish", sketchDiscard: "sketch-discard",
+  methodsNote: "methods-note", conditionsSummary: "conditions-summary", clearConditions: "clear-conditions",
 };
 
 const elements = Object.fromEntries(Object.entries(IDS).map(([name, id]) => [name, document.getElementById(id)]));
@@ -66,9 +71,17 @@ function setMethods(methods) {
     store.set({ ...state, message: "", error: "Choose at least one method." });
     return;
   }
-  store.set({ ...state, methods, family: null, message: "", error: "" });
-  // The regions are drawn only for the knots method: fetch them when it comes back.
-  if (methods.includes("knots") && state.pick && !state.regions) committing.refresh();
+  // The regions drawn follow the methods (knot pairs, weight pairs): fetched again.
+  store.nextGeneration();
+  store.set({ ...state, methods, family: null, lastSolutions: null, regions: null, message: "", error: "" });
+  if (state.pick) committing.refresh();
+}
+
+function setLayers(layers) {
+  const state = store.get();
+  store.set({ ...state, layers });
+  // The comb is fetched when it is first shown.
+  if (layers.comb && !state.drawing?.comb && !state.drag) committing.refresh();
 }
 
 function choose(index) {
@@ -121,11 +134,24 @@ function start() {
     },
     setMethods,
     setSnap: (snap) => store.set({ ...store.get(), snap }),
-    setLayers: (layers) => store.set({ ...store.get(), layers }),
+    setLayers,
+    mark: (point, pole) => {
+      const tool = store.get().tool;
+      if (pole !== undefined) return tool === "pin" ? conditions.toggleFixed(pole) : conditions.toggleAt(point, 1);
+      return conditions.toggleAt(point, tool === "pin" ? 0 : 1);
+    },
+    clearConditions: conditions.clearAll,
+    addSketchPoint: sketching.addPoint,
+    dropSketchPoint: sketching.dropLast,
+    discardSketch: sketching.discard,
+    finishSketch: () => sketching.finish(elements.sketchTolerance.value),
     sample: () => committing.loadCurve(structuredClone(SAMPLE_CUBIC), "The sample cubic."),
     bezierSample: () => committing.loadCurve(structuredClone(SINGLE_BEZIER), "A single Bézier piece: pick a point and knots are inserted around it."),
     loadText: files.loadText,
     exportCurve: () => files.exportCurve(elements),
+    exportFile: (format) => files.exportFile(format, elements),
+    openFile: (name, text) => files.openFile(name, text, elements),
+    chooseImported: files.chooseImported,
     retry: connection.probe,
     setApiKey: (key) => {
       api.setApiKey(key);

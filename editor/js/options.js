@@ -6,12 +6,16 @@
 export const TOOLS = [
   { id: "edit", label: "Edit", key: "v", help: "press on the curve and drag it; drag a control point; drag the background to pan" },
   { id: "pan", label: "Pan", key: "h", help: "every drag pans the view" },
+  { id: "pin", label: "Pin", key: "p", help: "click the curve to pin that point (again to unpin); click a control point to fix it (again to free it)" },
+  { id: "tangent", label: "Tangent", key: "t", help: "click the curve to lock the tangent's direction there (again to unlock)" },
+  { id: "points", label: "Points", key: "d", help: "click to add points, then Finish (Enter) makes a curve through them" },
 ];
 
-/** The solver's methods the page can ask for (`id` is the API's name). */
+/** The solver's methods the page can ask for (`id` is the API's name; `on` by default). */
 export const METHODS = [
-  { id: "knots", label: "knots (Ω1–Ω6)" },
-  { id: "control_points", label: "control points" },
+  { id: "knots", label: "knots (Ω1–Ω6)", on: true },
+  { id: "control_points", label: "control points", on: true },
+  { id: "weights", label: "weights (two per move)", on: false },
 ];
 
 /** Layers of the drawing that can be hidden; `shown` is the default. */
@@ -20,6 +24,7 @@ export const LAYERS = [
   { id: "control", label: "control polygon", shown: true },
   { id: "knots", label: "knot marks", shown: true },
   { id: "grid", label: "grid", shown: false },
+  { id: "comb", label: "curvature comb", shown: false },
 ];
 
 /** What a dragged point can snap to (all off by default). */
@@ -37,7 +42,8 @@ export const SHORTCUTS = [
   ["F", "fit the curve into the view"],
   ["+ / −", "zoom in / out about the centre"],
   ["Space + drag", "pan"],
-  ["V / H", "edit tool / pan tool"],
+  ["V / H / P / T / D", "edit / pan / pin / tangent / points tool"],
+  ["Enter / Backspace", "points tool: make the curve / drop the last point"],
   ["1 – 9", "choose a solution from the list (also during a drag)"],
   ["Ctrl+Z / Ctrl+Shift+Z", "undo / redo"],
 ];

@@ -3,7 +3,7 @@
 // the notices, the banner, the readout, the typed target — and mirrors what tests read into
 // body[data-*]. It reads the state and never changes it.
 
-import { describeFamily, describeSolution } from "./geometry.js";
+import { describeFamily, describeSolution, knotsRefusal } from "./geometry.js";
 import { LAYERS, METHODS, SHORTCUTS, SNAPS, TOOLS } from "./options.js";
 import { currentCurve, editBase } from "./state.js";
 import { REGION_COLOURS } from "./view.js";
@@ -43,7 +43,11 @@ export function buildPanel(elements) {
   }
   const items = [
     ...Object.keys(REGION_COLOURS).map((name) => [`swatch ${name}`, name.replace("omega", "Ω")]),
+    ["swatch weights", "weight pair's reach"],
     ["swatch triangle", "control triangle"],
+    ["swatch pin", "pin / tangent lock"],
+    ["swatch fixed", "fixed control point"],
+    ["swatch comb", "curvature comb"],
     ["swatch curve", "curve"],
     ["swatch preview", "preview"],
     ["swatch knot", "knots"],
@@ -64,10 +68,10 @@ export function buildPanel(elements) {
 function listed(state) {
   const drag = state.drag;
   if (drag?.kind === "point" && drag.alternatives) {
-    return { solutions: drag.alternatives, chosen: drag.keptIndex, live: drag.solution, nearest: drag.nearest, family: drag.family };
+    return { solutions: drag.alternatives, chosen: drag.keptIndex, live: drag.solution, nearest: drag.nearest, family: drag.family, poleOffset: drag.poleOffset };
   }
   const entry = state.lastSolutions;
-  return entry ? { solutions: entry.solutions, chosen: entry.chosen, live: null, nearest: entry.nearest, family: state.family } : null;
+  return entry ? { solutions: entry.solutions, chosen: entry.chosen, live: null, nearest: entry.nearest, excluded: entry.excluded, family: state.family } : null;
 }
 
 let drawnList = null;
@@ -85,6 +89,11 @@ function drawSolutions(state, elements) {
   } else if (state.drag?.kind === "point" && entry?.family) {
     note = `Kept through this drag: ${describeFamily(entry.family)} (keys 1–${Math.min(entry.solutions.length, 9)} switch).`;
   }
+  if (entry?.excluded?.length > 0) {
+    // What the pins, tangent locks and fixed control points ruled out (the API's `excluded`).
+    const dropped = entry.excluded.map((e) => `${e.count} ${e.method.replace("_", " ")} (${e.reason})`).join("; ");
+    note = `${note ? `${note} ` : ""}Left out under the conditions: ${dropped}.`;
+  }
   elements.solutionsNote.textContent = note;
   for (const [index, solution] of (entry?.solutions ?? []).entries()) {
     const item = document.createElement("li");
@@ -95,7 +104,7 @@ function drawSolutions(state, elements) {
     radio.value = String(index);
     radio.checked = index === entry.chosen;
     const shown = index === entry.chosen && entry.live ? entry.live : solution;
-    label.append(radio, ` ${describeSolution(shown)}`);
+    label.append(radio, ` ${describeSolution(shown, entry.poleOffset ?? 0)}`);
     item.appendChild(label);
     if (index === entry.chosen) item.className = "kept";
     elements.solutions.appendChild(item);
@@ -144,6 +153,44 @@ function drawTargetFields(state, elements) {
   }
 }
 
+const counted = (count, one) => `${count} ${one}${count === 1 ? "" : "s"}`;
+
+let drawnConditions = null;
+
+/** The methods' note (the knot pairs off for this curve), the conditions' summary and the
+ * draw-by-points buttons; rewritten only when what they show changed (a drag draws the
+ * panel on every move, and every text set makes the browser lay the page out again). */
+function drawConditions(state, elements) {
+  const key = [currentCurve(state), state.constraints, state.fixed, state.sketch];
+  if (drawnConditions && key.every((value, i) => value === drawnConditions[i])) return;
+  drawnConditions = key;
+  const body = document.body.dataset;
+  body.constraints = JSON.stringify(state.constraints);
+  body.fixed = JSON.stringify(state.fixed);
+  body.sketch = JSON.stringify(state.sketch);
+  elements.sketchFinish.disabled = state.sketch.length < 2;
+  elements.sketchDiscard.disabled = state.sketch.length === 0;
+  const refusal = knotsRefusal(currentCurve(state));
+  document.getElementById("method-knots").disabled = Boolean(refusal);
+  elements.methodsNote.textContent = refusal ?? "";
+  const pins = state.constraints.filter((c) => c.order === 0).length;
+  const tangents = state.constraints.length - pins;
+  const parts = [];
+  if (pins > 0) parts.push(counted(pins, "pin"));
+  if (tangents > 0) parts.push(counted(tangents, "tangent lock"));
+  if (state.fixed.length > 0) parts.push(`${counted(state.fixed.length, "fixed control point")} (${state.fixed.join(", ")})`);
+  const note = state.constraints.length > 0 ? "; regions are not drawn under pins and tangent locks (the solver decides)" : "";
+  elements.conditionsSummary.textContent = parts.length > 0 ? `${parts.join(", ")}${note}.` : "Nothing pinned.";
+  elements.clearConditions.disabled = parts.length === 0;
+}
+
+/** Sets body[data-name] to `value` only when it differs: every attribute written on the body
+ * makes the browser match again the style rules that depend on the body's attributes. */
+function mirror(name, value) {
+  const body = document.body.dataset;
+  if (body[name] !== value) body[name] = value;
+}
+
 let mirroredCurve = null;
 let mirroredBase = null;
 
@@ -159,6 +206,7 @@ export function drawPanel(state, elements) {
   elements.redo.disabled = state.history.future.length === 0;
   for (const button of elements.tools.children) button.setAttribute("aria-pressed", String(button.dataset.tool === state.tool));
   for (const method of METHODS) document.getElementById(`method-${method.id.replace("_", "-")}`).checked = state.methods.includes(method.id);
+  drawConditions(state, elements);
   for (const kind of SNAPS) document.getElementById(`snap-${kind.id}`).checked = state.snap[kind.id];
   for (const shown of LAYERS) document.getElementById(`layer-${shown.id}`).checked = state.layers[shown.id];
   const body = document.body.dataset;
@@ -172,13 +220,13 @@ export function drawPanel(state, elements) {
     mirroredBase = base;
     body.base = base === curve ? body.curve : JSON.stringify(base);
   }
-  body.picked = state.pick ? JSON.stringify({ parameter: state.pick.parameter, point: state.pick.point }) : "";
-  body.target = state.drag?.target ? JSON.stringify(state.drag.target) : state.lastTarget ? JSON.stringify(state.lastTarget) : "";
-  body.family = state.drag?.family ? JSON.stringify(state.drag.family) : state.family ? JSON.stringify(state.family) : "";
-  body.solutions = String(listed(state)?.solutions.length ?? 0);
-  body.message = state.message;
-  body.error = state.error;
-  body.connection = state.connection.state;
-  body.tool = state.tool;
-  body.frame = JSON.stringify(state.view.frame);
+  mirror("picked", state.pick ? JSON.stringify({ parameter: state.pick.parameter, point: state.pick.point }) : "");
+  mirror("target", state.drag?.target ? JSON.stringify(state.drag.target) : state.lastTarget ? JSON.stringify(state.lastTarget) : "");
+  mirror("family", state.drag?.family ? JSON.stringify(state.drag.family) : state.family ? JSON.stringify(state.family) : "");
+  mirror("solutions", String(listed(state)?.solutions.length ?? 0));
+  mirror("message", state.message);
+  mirror("error", state.error);
+  mirror("connection", state.connection.state);
+  mirror("tool", state.tool);
+  mirror("frame", JSON.stringify(state.view.frame));
 }

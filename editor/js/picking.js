@@ -7,23 +7,30 @@ import * as api from "./api.js";
 import * as geometry from "./geometry.js";
 import * as model from "./state.js";
 import * as store from "./store.js";
-import { failureMessage, regionsAt } from "./committing.js";
+import { failureMessage, regionMethods, regionsAt } from "./committing.js";
 import { drawingOf } from "./drawing.js";
 import { PICK_RADIUS } from "./view.js";
 
-/** Picks the curve point nearest to `point` (curve coordinates). Resolves to whether a
- * point was picked. */
+/** The tolerance of a regions request that only asks whether a knot pair is there, in
+ * drawing tolerances (its polygons are not drawn). */
+const REGION_PROBE_TOLERANCE = 10;
+
+/** Whether a knot-pair region is at `t` of `curve`: from `regions` when it was asked with
+ * the knots method, else by asking (regions are not drawn under constraints). */
+async function knotRegionAt(curve, t, regions, state) {
+  if (regions?.ok && regionMethods(curve, state).includes("knots")) return geometry.hasKnotRegion(regions.value);
+  const probe = await api.regions(curve, t, REGION_PROBE_TOLERANCE * geometry.drawingTolerance(curve), { methods: ["knots"] });
+  return probe.ok && geometry.hasKnotRegion(probe.value);
+}
+
+/** Picks the curve point nearest to `point` (curve coordinates; a 3D curve is picked in its
+ * x–y projection). Resolves to whether a point was picked. */
 export function pick(point) {
   return store.task(async () => {
     const state = store.get();
     const curve = model.currentCurve(state);
-    const refusal = geometry.editingRefusal(curve);
-    if (refusal) {
-      store.set({ ...state, message: refusal, error: "" });
-      return false;
-    }
     const mine = store.nextGeneration();
-    const found = await api.closestPoint(curve, point);
+    const found = await api.closestPoint(geometry.projected(curve), point);
     if (!store.isCurrent(mine)) return false;
     if (!found.ok) {
       store.set({ ...store.get(), message: "", error: failureMessage(found.problem) });
@@ -35,35 +42,51 @@ export function pick(point) {
       return false;
     }
     const t = closest.parameter;
-    const knotsOn = state.methods.includes("knots");
-    let base = curve;
-    let message = `Picked t = ${t.toPrecision(6)}. Drag the dot, or nudge it with the arrow keys.`;
-    let regions = knotsOn ? await regionsAt(curve, t, state.view.frame) : null;
-    if (!store.isCurrent(mine)) return false;
-    let drawing = store.get().drawing;
-    if (knotsOn && (!regions.ok || !geometry.hasUsableRegion(curve, regions.value))) {
-      const refined = await api.insertKnotsForEditing(curve, t);
+    let picked = closest.point;
+    if (geometry.dimension(curve) === 3) {
+      // The 3D point there: a drag moves it in its x–y plane, keeping its z.
+      const spatial = await api.evaluateAt(curve, [t]);
       if (!store.isCurrent(mine)) return false;
-      if (!refined.ok) {
-        store.set({ ...store.get(), message: "", error: failureMessage(refined.problem, "This point cannot be edited: ") });
+      if (!spatial.ok) {
+        store.set({ ...store.get(), message: "", error: failureMessage(spatial.problem) });
         return false;
       }
-      if (refined.value.inserted.length > 0) {
-        base = refined.value.curve;
-        const values = refined.value.inserted.map((u) => +u.toPrecision(4)).join(", ");
-        message = `No knot could move near t = ${t.toPrecision(4)}: inserted knots ${values} (the same curve, more control points; undone with the edit). Drag the dot.`;
-        const [again, marks] = await Promise.all([regionsAt(base, t, state.view.frame), drawingOf(base)]);
+      picked = spatial.value.points[0];
+    }
+    const knotsOn = geometry.usableMethods(curve, state.methods).includes("knots");
+    let base = curve;
+    let message = `Picked t = ${t.toPrecision(6)}. Drag the dot, or nudge it with the arrow keys.`;
+    let regions = await regionsAt(curve, t, state);
+    if (!store.isCurrent(mine)) return false;
+    let drawing = store.get().drawing;
+    if (knotsOn && !(await knotRegionAt(curve, t, regions, state))) {
+      if (!store.isCurrent(mine)) return false;
+      if (state.fixed.length > 0) {
+        message = `No knot pair moves the point at t = ${t.toPrecision(4)}, and no knots are inserted while control points are fixed (their numbers would change). ${message}`;
+      } else {
+        const refined = await api.insertKnotsForEditing(curve, t);
         if (!store.isCurrent(mine)) return false;
-        regions = again;
-        if (!marks.problem) drawing = marks;
+        if (!refined.ok) {
+          store.set({ ...store.get(), message: "", error: failureMessage(refined.problem, "This point cannot be edited: ") });
+          return false;
+        }
+        if (refined.value.inserted.length > 0) {
+          base = refined.value.curve;
+          const values = refined.value.inserted.map((u) => +u.toPrecision(4)).join(", ");
+          message = `No knot could move near t = ${t.toPrecision(4)}: inserted knots ${values} (the same curve, more control points; undone with the edit). Drag the dot.`;
+          const [again, marks] = await Promise.all([regionsAt(base, t, state), drawingOf(base)]);
+          if (!store.isCurrent(mine)) return false;
+          regions = again;
+          if (!marks.problem) drawing = { ...drawing, ...marks };
+        }
       }
     }
     const now = store.get();
     store.set({
       ...now,
       drawing,
-      pick: { parameter: t, point: closest.point, base },
-      regions: regions?.ok ? geometry.reachableRegions(base, regions.value) : null,
+      pick: { parameter: t, point: picked, base },
+      regions: regions?.ok ? regions.value : null,
       drag: null,
       lastSolutions: null,
       family: null,

@@ -19,9 +19,10 @@ function moveTo(target, { merge = false, nudging = false } = {}) {
   if (!state.pick || isDragging()) return Promise.resolve(false);
   const base = model.editBase(state);
   const { parameter } = state.pick;
+  const lifted = geometry.lifted(target, state.pick.point);
   return store.task(async () => {
     const mine = store.currentGeneration();
-    const answer = await api.solve(base, parameter, target, { methods: state.methods, family: state.family });
+    const answer = await api.solve(base, parameter, lifted, { methods: model.methodsFor(state), family: state.family, conditions: model.conditions(state) });
     if (!store.isCurrent(mine)) return false;
     if (!answer.ok) {
       store.set(failed(store.get(), answer.problem, "Nothing committed: "));
@@ -38,9 +39,9 @@ function moveTo(target, { merge = false, nudging = false } = {}) {
     const done = await commitCurve(geometry.applySolution(base, solution), {
       replace: merge,
       pick: { parameter, point: solution.point, nudged: nudging },
-      lastSolutions: { solutions, chosen, nearest, base, target },
+      lastSolutions: { solutions, chosen, nearest, excluded: answer.value.excluded ?? [], base, target: lifted },
       family: geometry.familyOf(solution),
-      lastTarget: target,
+      lastTarget: lifted,
       message: `Moved to (${target.map((v) => +v.toPrecision(8)).join(", ")}): ${geometry.describeSolution(solution)}.`,
     });
     return done;

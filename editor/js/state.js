@@ -3,6 +3,7 @@
 // result (event → new state → draw).
 
 import { LAYERS, METHODS, SNAPS } from "./options.js";
+import { domain, usableMethods } from "./geometry.js";
 
 /** A fresh state editing `curve`, drawn in `frame` on a drawing of `size`. */
 export function initialState(curve, frame, size) {
@@ -15,7 +16,10 @@ export function initialState(curve, frame, size) {
     drag: null, // see dragging.js
     lastSolutions: null, // after a release: { solutions, chosen, base, target } to re-choose
     family: null, // the way of moving the point that drags and nudges keep (geometry.familyOf)
-    methods: METHODS.map((method) => method.id),
+    methods: METHODS.filter((method) => method.on).map((method) => method.id),
+    constraints: [], // pins { parameter, order: 0 } and tangent locks { parameter, order: 1, direction_only: true }
+    fixed: [], // indices of the control points no solution may move
+    sketch: [], // the points of "draw by points" (sketching.js)
     layers: Object.fromEntries(LAYERS.map((layer) => [layer.id, layer.shown])),
     snap: Object.fromEntries(SNAPS.map((kind) => [kind.id, false])),
     tool: "edit",
@@ -24,6 +28,31 @@ export function initialState(curve, frame, size) {
     message: "",
     error: "",
   };
+}
+
+/** The methods the page asks the solver for: the ticked ones that can edit the curve (the
+ * knot pairs only on planar cubics). */
+export function methodsFor(state) {
+  return usableMethods(editBase(state), state.methods);
+}
+
+/** Whether solving carries conditions (constraints or fixed control points). */
+export function constrained(state) {
+  return state.constraints.length > 0 || state.fixed.length > 0;
+}
+
+/** The conditions of the requests ({ constraints, fixed }, API names in api.js). */
+export function conditions(state) {
+  return { constraints: state.constraints, fixed: state.fixed };
+}
+
+/** The conditions that still fit `curve` (after undo or redo to another curve): parameters
+ * inside its domain, control point indices among its own. */
+function fitting(state, curve) {
+  const [lo, hi] = domain(curve);
+  const constraints = state.constraints.filter((c) => c.parameter >= lo && c.parameter <= hi);
+  const fixed = state.fixed.filter((index) => index < curve.control_points.length);
+  return constraints.length === state.constraints.length && fixed.length === state.fixed.length ? state : { ...state, constraints, fixed };
 }
 
 /** The committed curve. */
@@ -53,10 +82,10 @@ export function undo(state) {
   if (past.length === 0) {
     return state;
   }
-  return {
+  return fitting({
     ...cleared(state),
     history: { past: past.slice(0, -1), present: past[past.length - 1], future: [present, ...future] },
-  };
+  }, past[past.length - 1]);
 }
 
 /** One step forward; the pick is dropped. */
@@ -65,15 +94,15 @@ export function redo(state) {
   if (future.length === 0) {
     return state;
   }
-  return {
+  return fitting({
     ...cleared(state),
     history: { past: [...past, present], present: future[0], future: future.slice(1) },
-  };
+  }, future[0]);
 }
 
-/** A new curve to edit (history kept: loading is undoable). */
+/** A new curve to edit (history kept: loading is undoable); its conditions start empty. */
 export function load(state, curve) {
-  return { ...cleared(commit(state, curve)), family: null };
+  return { ...cleared(commit(state, curve)), family: null, constraints: [], fixed: [] };
 }
 
 /** The state without pick, regions, drag and re-choosable solutions. */

@@ -17,6 +17,11 @@ const MARK_SPACING = 8;
 /** A control point closer than this (pixels) to a neighbour has no grip. */
 const GRIP_SPACING = 14;
 
+/** The longest tooth of the curvature comb, in pixels (the others in proportion). */
+const COMB_PIXELS = 60;
+/** Half the length of a tangent lock's mark, in pixels. */
+const TANGENT_MARK = 22;
+
 /** Okabe & Ito's colour-blind-safe palette, the same as the service's SVG picture. */
 export const REGION_COLOURS = {
   omega1: "#e69f00",
@@ -87,12 +92,53 @@ function drawRegions(regions, group) {
       element("polygon", { points: pairs(candidate.triangle), class: "triangle", "data-side": candidate.side }, group);
     }
   }
+  // The weight pairs' quadrilaterals: where moving the two weights of poles k, l puts the point.
+  for (const region of regions?.weight_regions ?? []) {
+    element("polygon", { points: pairs(region.polygon), class: "region weight-region", "data-region": "weights", "data-poles": region.poles.join(",") }, group);
+  }
+}
+
+/** The curvature comb: per tooth a line from the curve along the normal, κ long (scaled so
+ * that the longest is COMB_PIXELS), and the line through the teeth's ends. */
+function drawComb(comb, frame, group) {
+  const longest = Math.max(...comb.teeth.map(([x, y]) => Math.hypot(x, y)), 0);
+  if (!(longest > 0)) return;
+  const factor = COMB_PIXELS / (frame.scale * longest);
+  const ends = comb.points.map((p, i) => [p[0] + comb.teeth[i][0] * factor, p[1] + comb.teeth[i][1] * factor]);
+  const teeth = comb.points.map((p, i) => `M${p[0]} ${p[1]}L${ends[i][0]} ${ends[i][1]}`).join("");
+  element("path", { d: teeth, class: "comb-teeth" }, group);
+  element("polyline", { points: pairs(ends), class: "comb-envelope" }, group);
+}
+
+/** The points of "draw by points", joined in their order. */
+function drawSketch(points, frame, group) {
+  if (points.length === 0) return;
+  element("polyline", { points: pairs(points), class: "sketch-line" }, group);
+  for (const [x, y] of points) element("circle", { cx: x, cy: y, r: DOT / frame.scale, class: "sketch-point" }, group);
+}
+
+/** The pins (rings on the curve) and tangent locks (a bar along the tangent) of `state`. */
+function drawConditions(constraints, marks, frame, group) {
+  constraints.forEach((constraint, i) => {
+    const mark = marks?.[i];
+    if (!mark) return;
+    const [x, y] = mark.point;
+    if (constraint.order === 0) {
+      element("circle", { cx: x, cy: y, r: (DOT * 1.4) / frame.scale, class: "pin", "data-parameter": constraint.parameter }, group);
+      return;
+    }
+    const [dx, dy] = mark.tangent;
+    const length = Math.hypot(dx, dy) || 1;
+    const half = TANGENT_MARK / frame.scale;
+    const [ux, uy] = [(dx / length) * half, (dy / length) * half];
+    element("path", { d: `M${x - ux} ${y - uy}L${x + ux} ${y + uy}`, class: "tangent-lock", "data-parameter": constraint.parameter }, group);
+  });
 }
 
 /** The control points' dots (thinned where dense) and their grips: only a control point at
  * least GRIP_SPACING pixels from its neighbours has one, so that dense control points do not
  * cover the curve (zoom in to reach them). */
-function drawGrips(curve, frame, group) {
+function drawGrips(curve, frame, fixed, group) {
   const radius = (DOT * 0.7) / frame.scale;
   const poles = curve.control_points;
   for (const index of thinned(frame, poles, MARK_SPACING)) {
@@ -105,6 +151,13 @@ function drawGrips(curve, frame, group) {
       element("circle", { cx: x, cy: y, r: GRIP / frame.scale, class: "pole-grip", "data-index": index }, group);
     }
   });
+  // Fixed control points: a square around the dot (drawn whatever the spacing).
+  const half = (DOT * 1.2) / frame.scale;
+  for (const index of fixed) {
+    const [x, y] = poles[index] ?? [];
+    if (x === undefined) continue;
+    element("rect", { x: x - half, y: y - half, width: 2 * half, height: 2 * half, class: "pole-fixed", "data-index": index }, group);
+  }
 }
 
 /** The preview of a drag: the moved control points with their polygon, and the new piece
@@ -147,20 +200,25 @@ export function drawScene(state, scene) {
   scene.setAttribute("transform", `matrix(${frame.scale} 0 0 ${-frame.scale} ${frame.offset[0]} ${frame.offset[1]})`);
   const base = editBase(state);
   const shows = state.layers;
-  const layers = Object.fromEntries(["grid", "regions", "control", "curve", "preview", "marks", "grips", "dots"].map(
+  const layers = Object.fromEntries(["grid", "regions", "control", "comb", "curve", "preview", "marks", "grips", "conditions", "sketch", "dots"].map(
     (name) => [name, layer(scene, name)]));
   const showGrid = shows.grid || state.snap.grid;
   redraw(layers.grid, [showGrid, frame, size], (group) => showGrid && drawGrid(frame, size, group));
-  const regions = shows.regions && state.methods.includes("knots") ? state.regions : null;
+  const regions = shows.regions ? state.regions : null;
   redraw(layers.regions, [regions], (group) => drawRegions(regions, group));
   redraw(layers.control, [shows.control, base], (group) => {
     if (shows.control) element("polyline", { points: pairs(base.control_points), class: "control polygon" }, group);
   });
+  const comb = shows.comb ? state.drawing?.comb ?? null : null;
+  redraw(layers.comb, [comb, frame], (group) => comb && drawComb(comb, frame, group));
   redraw(layers.curve, [state.drawing, frame], (group) => drawCurve(state.drawing, "curve", group, (2 * PICK_RADIUS) / frame.scale));
   const drag = state.drag;
   redraw(layers.preview, [drag?.previewDrawing, drag?.movedPoles, frame], (group) => drag && drawPreview(drag, frame, group));
   const marks = shows.knots ? state.drawing?.knotPoints ?? [] : [];
   redraw(layers.marks, [marks, frame], (group) => drawMarks(marks, frame, group));
-  redraw(layers.grips, [shows.control, base, frame], (group) => shows.control && drawGrips(base, frame, group));
+  redraw(layers.grips, [shows.control, base, frame, state.fixed], (group) => shows.control && drawGrips(base, frame, state.fixed, group));
+  const conditionMarks = state.drawing?.conditionMarks;
+  redraw(layers.conditions, [state.constraints, conditionMarks, frame], (group) => drawConditions(state.constraints, conditionMarks, frame, group));
+  redraw(layers.sketch, [state.sketch, frame], (group) => drawSketch(state.sketch, frame, group));
   redraw(layers.dots, [state.pick, drag?.solution, drag?.target, frame], (group) => drawDots(state, frame, group));
 }

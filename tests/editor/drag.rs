@@ -249,7 +249,8 @@ async fn a_single_bezier_gets_knots_inserted_and_then_drags() {
     let exported: Value = serde_json::from_str(exported.as_str().unwrap()).unwrap();
     assert_eq!(numbers(&exported), numbers(&rational));
 
-    // A 3D curve: shown in projection, editing refused with a message.
+    // A 3D curve: shown in projection, the knot pairs off (the checkbox disabled, a note);
+    // a click picks its point (moving it is in the `third_release` tests).
     let spatial = json!({"degree": 3, "control_points": [[0, 0, 0], [1, 2, 1], [3, 2, 2], [4, 0, 3]],
                          "knots": [0, 0, 0, 0, 1, 1, 1, 1]});
     paste(&page, &spatial).await;
@@ -257,12 +258,15 @@ async fn a_single_bezier_gets_knots_inserted_and_then_drags() {
     let pixel = page.to_screen(point_at(&app, &spatial, 0.5).await).await;
     page.click_at(pixel).await;
     page.settle().await;
-    assert!(page.picked().await.is_none());
-    let message = page.data("message").await;
-    assert!(
-        message.contains("3D curve") && message.contains("control points"),
-        "{message}"
-    );
+    let picked = page.picked().await.expect("a 3D curve's point is picked");
+    assert_eq!(picked["point"].as_array().unwrap().len(), 3, "{picked}");
+    let knots_off = page
+        .run(
+            "return document.getElementById('method-knots').disabled;",
+            vec![],
+        )
+        .await;
+    assert_eq!(knots_off, json!(true));
 
     // Broken JSON and a curve the API refuses: readable messages, the page keeps working.
     page.run(

@@ -318,7 +318,7 @@ async fn control_points_of_any_degree_and_of_3d_curves_drag() {
         assert!(
             page.data("message")
                 .await
-                .contains("Drag its control points")
+                .contains("control points and weights move its points")
         );
         let from = page.to_screen([5.0, 4.0]).await;
         let to = (from.0 + 20, from.1 + 25);

@@ -249,7 +249,8 @@ async fn a_favicon_no_missing_file_and_keyboard_reachability() {
         "Ctrl+Z / Ctrl+Shift+Z",
         "← ↑ → ↓",
         "+ / −",
-        "V / H",
+        "V / H / P / T / D",
+        "Enter / Backspace",
     ] {
         assert!(
             listed.iter().any(|entry| entry == key),

@@ -11,9 +11,9 @@ use super::page::Page;
 use super::steps::{pick, point_at, sample};
 use crate::helpers::{TestApp, spawn_app};
 
-type Polygon = Vec<[f64; 2]>;
+pub type Polygon = Vec<[f64; 2]>;
 
-fn inside(point: [f64; 2], polygon: &Polygon) -> bool {
+pub fn inside(point: [f64; 2], polygon: &Polygon) -> bool {
     let mut crossings = false;
     for (i, a) in polygon.iter().enumerate() {
         let b = polygon[(i + polygon.len() - 1) % polygon.len()];
@@ -26,7 +26,7 @@ fn inside(point: [f64; 2], polygon: &Polygon) -> bool {
     crossings
 }
 
-fn distance_to_edge(point: [f64; 2], polygon: &Polygon) -> f64 {
+pub fn distance_to_edge(point: [f64; 2], polygon: &Polygon) -> f64 {
     let mut nearest = f64::INFINITY;
     for (i, a) in polygon.iter().enumerate() {
         let b = polygon[(i + polygon.len() - 1) % polygon.len()];
@@ -45,7 +45,7 @@ fn distance_to_edge(point: [f64; 2], polygon: &Polygon) -> f64 {
 /// `count` points inside `polygon` and at least `inset` from its edges, from a fixed
 /// pseudo-random sequence over its box. (The page draws a region's edge within half a pixel
 /// of the true boundary; a point closer to the edge than that may lie on either side.)
-fn points_inside(polygon: &Polygon, count: usize, inset: f64) -> Vec<[f64; 2]> {
+pub fn points_inside(polygon: &Polygon, count: usize, inset: f64) -> Vec<[f64; 2]> {
     let (mut low, mut high) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
     for p in polygon {
         for axis in 0..2 {
@@ -76,7 +76,7 @@ fn points_inside(polygon: &Polygon, count: usize, inset: f64) -> Vec<[f64; 2]> {
     points
 }
 
-fn polygon(value: &Value) -> Polygon {
+pub fn polygon(value: &Value) -> Polygon {
     value
         .as_array()
         .unwrap()

@@ -78,6 +78,8 @@ const ASSETS: &[Asset] = assets![
     ("js/geometry.js", JAVASCRIPT),
     ("js/drawing.js", JAVASCRIPT),
     ("js/sample.js", JAVASCRIPT),
+    ("js/conditions.js", JAVASCRIPT),
+    ("js/sketching.js", JAVASCRIPT),
 ];
 
 /// Where browsers look for a site's icon.

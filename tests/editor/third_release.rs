@@ -1,0 +1,763 @@
+//! The third release in the page: the regions it draws are asked with the solver's methods
+//! and fixed control points (every sampled point of a drawn knot-pair or weight region is
+//! reachable by solve with the page's own request), the weights method drags and commits a
+//! rational curve, curves of other degrees and 3D curves move their points by control
+//! points, pins, tangent locks and fixed control points hold on the committed curve
+//! (re-evaluated through the API), and the curvature comb agrees with finite differences.
+
+use serde_json::{Value, json};
+
+use super::browser::Browser;
+use super::page::Page;
+use super::regions::{Polygon, points_inside, polygon};
+use super::steps::{drag_target, numbers, paste, pick, point_at, sample};
+use crate::helpers::{TestApp, spawn_app};
+
+/// The drawn regions: (side, region, poles, polygon); weight regions have side "" and the
+/// pair's poles, knot-pair regions no poles.
+async fn drawn_regions(page: &Page<'_>) -> Vec<(String, String, String, Polygon)> {
+    let value = page
+        .run(
+            "return [...document.querySelectorAll('#scene polygon.region')].map((p) => \
+             [p.dataset.side || '', p.dataset.region, p.dataset.poles || '', \
+              p.getAttribute('points').split(' ').map((xy) => xy.split(',').map(Number))]);",
+            vec![],
+        )
+        .await;
+    value
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|r| {
+            (
+                r[0].as_str().unwrap().to_owned(),
+                r[1].as_str().unwrap().to_owned(),
+                r[2].as_str().unwrap().to_owned(),
+                polygon(&r[3]),
+            )
+        })
+        .collect()
+}
+
+/// The page's request (methods as ticked, the domain kept, its fixed control points) for
+/// `target`: whether it has a solution of the drawn region's own family (not a nearest one).
+async fn solved_by_region(
+    app: &TestApp,
+    curve: &Value,
+    t: f64,
+    target: [f64; 2],
+    methods: &[&str],
+    fixed: &[usize],
+    (side, region, poles): (&str, &str, &str),
+) -> bool {
+    let mut request = json!({"curve": curve, "parameter": t, "target": target, "side": "both",
+                             "keep_domain": true, "methods": methods});
+    if !fixed.is_empty() {
+        request["fixed_control_points"] = json!(fixed);
+    }
+    let (status, body) = app.post_json("/v1/shape/solve", &request).await;
+    assert_eq!(status, 200, "{body}");
+    body["solutions"].as_array().unwrap().iter().any(|s| {
+        if region == "weights" {
+            let pair: Vec<String> = s["poles"]
+                .as_array()
+                .map(|p| p.iter().map(|k| k.to_string()).collect())
+                .unwrap_or_default();
+            s["method"] == "weights" && pair.join(",") == poles
+        } else {
+            s["method"] == "knots" && s["side"] == side && s["region"] == region
+        }
+    })
+}
+
+/// Checks every drawn region: a few points a pixel inside it are solved by its family.
+/// Returns how many regions of each kind (knots, weights) were sampled.
+async fn check_drawn_regions(
+    page: &Page<'_>,
+    app: &TestApp,
+    t: f64,
+    methods: &[&str],
+    fixed: &[usize],
+) -> (usize, usize) {
+    let pixel = 1.0 / page.frame().await["scale"].as_f64().unwrap();
+    let mut sampled = (0, 0);
+    for (side, region, poles, shape) in drawn_regions(page).await {
+        let points = points_inside(&shape, 4, pixel);
+        if points.is_empty() {
+            continue;
+        }
+        if region == "weights" {
+            sampled.1 += 1;
+        } else {
+            sampled.0 += 1;
+        }
+        for target in points {
+            assert!(
+                solved_by_region(
+                    app,
+                    &sample(),
+                    t,
+                    target,
+                    methods,
+                    fixed,
+                    (&side, &region, &poles)
+                )
+                .await,
+                "t = {t}: {side} {region} {poles} drawn, but {target:?} is not solved by it"
+            );
+        }
+    }
+    sampled
+}
+
+async fn count(page: &Page<'_>, selector: &str) -> u64 {
+    page.run(
+        "return document.querySelectorAll(arguments[0]).length;",
+        vec![json!(selector)],
+    )
+    .await
+    .as_u64()
+    .unwrap()
+}
+
+#[tokio::test]
+async fn drawn_knot_and_weight_regions_are_solved_by_the_pages_own_request() {
+    let app = spawn_app().await;
+    let browser = Browser::start().await;
+    let page = Page::open(&browser.client, &app.address).await;
+    page.click_id("method-weights").await;
+    page.settle().await;
+    let all = ["knots", "control_points", "weights"];
+    let (t, _) = pick(&page, &app, &sample(), 0.42).await;
+    let (knots, weights) = check_drawn_regions(&page, &app, t, &all, &[]).await;
+    assert!(
+        knots >= 3 && weights >= 4,
+        "{knots} knot, {weights} weight regions sampled"
+    );
+    // Poles 2..=5 carry the basis at t = 0.42: six pairs, all drawn.
+    assert_eq!(count(&page, "#scene polygon.weight-region").await, 6);
+
+    // Control point 4 fixed with the Pin tool: its pairs are not drawn, the others are still
+    // solved with the fixed control point in the request.
+    let pole = sample()["control_points"][4].clone();
+    let pole = page
+        .to_screen([pole[0].as_f64().unwrap(), pole[1].as_f64().unwrap()])
+        .await;
+    page.click_id("tool-pin").await;
+    page.click_at(pole).await;
+    page.settle().await;
+    assert_eq!(page.data("fixed").await, "[4]");
+    assert_eq!(count(&page, "#scene .pole-fixed").await, 1);
+    let pairs: Vec<String> = drawn_regions(&page)
+        .await
+        .into_iter()
+        .filter(|r| r.1 == "weights")
+        .map(|r| r.2)
+        .collect();
+    assert_eq!(pairs, ["2,3", "2,5", "3,5"], "pairs without pole 4");
+    let (_, weights) = check_drawn_regions(&page, &app, t, &all, &[4]).await;
+    assert!(weights >= 2, "{weights} weight regions sampled");
+
+    // Weights off: only the knot pairs' regions.
+    page.click_id("method-weights").await;
+    page.settle().await;
+    assert_eq!(count(&page, "#scene polygon.weight-region").await, 0);
+    assert!(count(&page, "#scene polygon.region").await > 0);
+    assert_eq!(page.script_errors().await, Vec::<String>::new());
+    browser.close().await;
+}
+
+/// The target of the last edit as the page sent it (2 or 3 coordinates), after checking it
+/// is the one the pointer's displacement gives (`expected`, within a thousandth of a pixel).
+async fn sent_target(page: &Page<'_>, expected: [f64; 2]) -> Vec<f64> {
+    let sent: Vec<f64> = serde_json::from_str(&page.data("target").await).unwrap();
+    let scale = page.frame().await["scale"].as_f64().unwrap();
+    assert!(
+        (sent[0] - expected[0]).hypot(sent[1] - expected[1]) * scale < 1e-3,
+        "sent {sent:?}, expected {expected:?}"
+    );
+    sent
+}
+
+/// `curve`'s point at `t` (2 or 3 coordinates) through the API.
+async fn point_of(app: &TestApp, curve: &Value, t: f64) -> Vec<f64> {
+    let (status, body) = app
+        .post_json(
+            "/v1/curves/evaluate",
+            &json!({"curve": curve, "parameters": [t]}),
+        )
+        .await;
+    assert_eq!(status, 200, "{body}");
+    serde_json::from_value(body["points"][0].clone()).unwrap()
+}
+
+fn assert_close(got: &[f64], expected: &[f64], what: &str) {
+    let scale = 1.0 + expected.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+    let distance = got
+        .iter()
+        .zip(expected)
+        .map(|(a, b)| (a - b) * (a - b))
+        .sum::<f64>()
+        .sqrt();
+    assert!(
+        got.len() == expected.len() && distance <= 1e-9 * scale,
+        "{what}: {got:?} vs {expected:?}"
+    );
+}
+
+#[tokio::test]
+async fn the_weights_method_drags_with_a_polyline_preview_and_commits_a_rational_curve() {
+    let app = spawn_app().await;
+    let browser = Browser::start().await;
+    let page = Page::open(&browser.client, &app.address).await;
+    page.click_id("method-weights").await;
+    page.click_id("method-knots").await;
+    page.click_id("method-control-points").await;
+    page.settle().await;
+    let (t, dot) = pick(&page, &app, &sample(), 0.42).await;
+    // A pixel well inside a drawn weight quadrilateral, away from the dot.
+    let scale = page.frame().await["scale"].as_f64().unwrap();
+    let mut aim = None;
+    for (_, region, _, shape) in drawn_regions(&page).await {
+        assert_eq!(region, "weights", "only weight regions are drawn");
+        for p in points_inside(&shape, 40, 4.0 / scale) {
+            let pixel = page.to_screen(p).await;
+            let away = ((pixel.0 - dot.0).pow(2) + (pixel.1 - dot.1).pow(2)) as f64;
+            if (400.0..6400.0).contains(&away) && aim.is_none() {
+                aim = Some(pixel);
+            }
+        }
+    }
+    let aim = aim.expect("a weight region reaches 20–80 px from the dot");
+    let target = drag_target(&page, dot, aim).await;
+    page.press_at(dot).await;
+    page.move_to(((dot.0 + aim.0) / 2, (dot.1 + aim.1) / 2))
+        .await;
+    page.move_to(aim).await;
+    // The preview of a weight solution is a polyline (there is no SVG path of a rational curve).
+    page.wait_until(
+        "a polyline preview",
+        "document.querySelector('#scene .layer-preview polyline.preview') !== null",
+    )
+    .await;
+    super::steps::screenshot(&browser.client, "editor-weights.png", false).await;
+    page.release().await;
+    page.settle().await;
+    let committed = page.curve().await;
+    let weights = committed["weights"].as_array().expect("a rational curve");
+    let changed: Vec<usize> = (0..weights.len())
+        .filter(|&k| weights[k].as_f64().unwrap() != 1.0)
+        .collect();
+    assert_eq!(changed.len(), 2, "two weights change: {weights:?}");
+    assert_eq!(numbers(&committed).2, numbers(&sample()).2, "poles stay");
+    let target = sent_target(&page, target).await;
+    assert_close(
+        &point_of(&app, &committed, t).await,
+        &target,
+        "s(t) is the target",
+    );
+    assert!(page.data("message").await.contains("weights · poles"));
+    assert_eq!(page.script_errors().await, Vec::<String>::new());
+    browser.close().await;
+}
+
+#[tokio::test]
+async fn points_of_quadratic_and_3d_curves_move_by_control_points() {
+    let app = spawn_app().await;
+    let browser = Browser::start().await;
+    let page = Page::open(&browser.client, &app.address).await;
+    let quadratic = json!({"degree": 2, "control_points": [[0, 0], [2, 4], [5, 4], [7, 0]],
+                           "knots": [0, 0, 0, 0.5, 1, 1, 1]});
+    let spatial = json!({"degree": 3, "control_points": [[0, 0, 1], [2, 4, 2], [5, 4, 3], [7, 0, 4]],
+                         "knots": [0, 0, 0, 0, 1, 1, 1, 1]});
+    for curve in [quadratic, spatial] {
+        paste(&page, &curve).await;
+        let knots_off = page
+            .run(
+                "return [document.getElementById('method-knots').disabled, \
+                 document.getElementById('methods-note').textContent];",
+                vec![],
+            )
+            .await;
+        assert_eq!(knots_off[0], json!(true), "{knots_off}");
+        assert!(knots_off[1].as_str().unwrap().contains("knot-pair method"));
+        let (t, dot) = pick(&page, &app, &curve, 0.3).await;
+        let before = point_of(&app, &curve, t).await;
+        let aim = (dot.0 + 18, dot.1 - 22);
+        let target = drag_target(&page, dot, aim).await;
+        page.drag(dot, &[(dot.0 + 9, dot.1 - 11), aim]).await;
+        let committed = page.curve().await;
+        assert_ne!(numbers(&committed), numbers(&curve), "the curve changed");
+        let sent = sent_target(&page, target).await;
+        assert_eq!(sent.len(), before.len());
+        if before.len() == 3 {
+            assert_eq!(sent[2], before[2], "the point moves in its x–y plane");
+        }
+        assert_close(&point_of(&app, &committed, t).await, &sent, "s(t)");
+        assert!(page.data("message").await.contains("control points"));
+    }
+    assert_eq!(page.script_errors().await, Vec::<String>::new());
+    browser.close().await;
+}
+
+/// `curve`'s first derivative at `t` through the API.
+async fn tangent_of(app: &TestApp, curve: &Value, t: f64) -> [f64; 2] {
+    let (status, body) = app
+        .post_json(
+            "/v1/curves/evaluate",
+            &json!({"curve": curve, "parameters": [t], "derivatives": 1}),
+        )
+        .await;
+    assert_eq!(status, 200, "{body}");
+    let d = &body["derivatives"][0][0];
+    [d[0].as_f64().unwrap(), d[1].as_f64().unwrap()]
+}
+
+#[tokio::test]
+async fn pins_tangent_locks_and_fixed_poles_hold_on_the_committed_curve() {
+    let app = spawn_app().await;
+    let browser = Browser::start().await;
+    let page = Page::open(&browser.client, &app.address).await;
+    let original = sample();
+    // Pin tool: a click on the curve pins, a click on control point 6 fixes it.
+    page.click_id("tool-pin").await;
+    let at = page.to_screen(point_at(&app, &original, 0.15).await).await;
+    page.click_at(at).await;
+    page.settle().await;
+    let pole = page.to_screen([9.0, 2.0]).await;
+    page.click_at(pole).await;
+    page.settle().await;
+    // Tangent tool (the key T): a click locks the tangent's direction.
+    page.run("document.getElementById('canvas').focus();", vec![])
+        .await;
+    page.key('t', false).await;
+    assert_eq!(page.data("tool").await, "tangent");
+    let at = page.to_screen(point_at(&app, &original, 0.7).await).await;
+    page.click_at(at).await;
+    page.settle().await;
+    // A click beside the pin (3 px off) locks the tangent exactly at the pin's parameter.
+    let on_pin = page.to_screen(point_at(&app, &original, 0.15).await).await;
+    page.click_at((on_pin.0 + 3, on_pin.1)).await;
+    page.settle().await;
+    let constraints: Value = serde_json::from_str(&page.data("constraints").await).unwrap();
+    let list = constraints.as_array().unwrap();
+    assert_eq!(list.len(), 3, "{constraints}");
+    assert_eq!(list[0]["order"], json!(0));
+    for lock in &list[1..] {
+        assert_eq!(lock["order"], json!(1));
+        assert_eq!(lock["direction_only"], json!(true));
+    }
+    assert_eq!(
+        list[2]["parameter"], list[0]["parameter"],
+        "the lock is at the pin"
+    );
+    assert_eq!(page.data("fixed").await, "[6]");
+    assert_eq!(count(&page, "#scene .pin").await, 1);
+    assert_eq!(count(&page, "#scene .tangent-lock").await, 2);
+    let pin = list[0]["parameter"].as_f64().unwrap();
+    let locks = [list[1]["parameter"].as_f64().unwrap(), pin];
+
+    // The edit tool: the fixed pole and a pole under the pin do not move by hand.
+    page.key('v', false).await;
+    for pole in [[9.0, 2.0], [1.0, 3.0]] {
+        let from = page.to_screen(pole).await;
+        page.drag(
+            from,
+            &[(from.0 + 8, from.1 + 8), (from.0 + 20, from.1 + 20)],
+        )
+        .await;
+        assert_eq!(numbers(&page.curve().await), numbers(&original));
+    }
+    // A drag of the curve point at 0.42 solves the whole curve under the conditions.
+    let (t, dot) = pick(&page, &app, &original, 0.42).await;
+    assert_eq!(
+        count(&page, "#scene polygon.region").await,
+        0,
+        "no regions under constraints"
+    );
+    // Into a knot-pair region (as drawn without conditions): the conditions rule its
+    // solution out, the control-point move under them is committed.
+    let aim = super::steps::pixel_inside_a_region(&page, &app, &original, t, dot).await;
+    let target = drag_target(&page, dot, aim).await;
+    page.drag(dot, &[((dot.0 + aim.0) / 2, (dot.1 + aim.1) / 2), aim])
+        .await;
+    let committed = page.curve().await;
+    super::steps::screenshot(&browser.client, "editor-constraints.png", false).await;
+    assert_ne!(
+        numbers(&committed),
+        numbers(&original),
+        "{}",
+        page.describe().await
+    );
+    let target = sent_target(&page, target).await;
+    assert_close(&point_of(&app, &committed, t).await, &target, "s(t)");
+    assert_close(
+        &point_of(&app, &committed, pin).await,
+        &point_of(&app, &original, pin).await,
+        "the pinned point",
+    );
+    for lock in locks {
+        let (a, b) = (
+            tangent_of(&app, &original, lock).await,
+            tangent_of(&app, &committed, lock).await,
+        );
+        let cross = (a[0] * b[1] - a[1] * b[0]) / (a[0].hypot(a[1]) * b[0].hypot(b[1]));
+        assert!(
+            cross.abs() < 1e-8 && a[0] * b[0] + a[1] * b[1] > 0.0,
+            "tangent at {lock}: {a:?} → {b:?}"
+        );
+    }
+    assert_eq!(
+        committed["control_points"][6],
+        original["control_points"][6]
+    );
+    // What the conditions ruled out, as the API says for the page's own request, is listed.
+    let request = json!({"curve": original, "parameter": t, "target": target, "side": "both",
+                         "nearest": true, "methods": ["knots", "control_points"],
+                         "constraints": constraints, "fixed_control_points": [6]});
+    let (status, body) = app.post_json("/v1/shape/solve", &request).await;
+    assert_eq!(status, 200, "{body}");
+    let excluded = body["excluded"].as_array().unwrap();
+    assert!(!excluded.is_empty(), "{body}");
+    let note = page
+        .run(
+            "return document.getElementById('solutions-note').textContent;",
+            vec![],
+        )
+        .await;
+    let note = note.as_str().unwrap();
+    assert!(note.contains("Left out under the conditions"), "{note}");
+    for dropped in excluded {
+        assert!(note.contains(dropped["reason"].as_str().unwrap()), "{note}");
+    }
+
+    // Clicking the pin again with the Pin tool removes it; Clear removes the rest.
+    page.key('p', false).await;
+    let at = page.to_screen(point_at(&app, &committed, pin).await).await;
+    page.click_at(at).await;
+    page.settle().await;
+    assert_eq!(count(&page, "#scene .pin").await, 0);
+    page.click_id("clear-conditions").await;
+    page.settle().await;
+    assert_eq!(page.data("constraints").await, "[]");
+    assert_eq!(page.data("fixed").await, "[]");
+    assert_eq!(page.script_errors().await, Vec::<String>::new());
+    browser.close().await;
+}
+
+#[tokio::test]
+async fn the_curvature_comb_agrees_with_finite_differences() {
+    let app = spawn_app().await;
+    let browser = Browser::start().await;
+    let page = Page::open(&browser.client, &app.address).await;
+    assert_eq!(count(&page, "#scene .comb-teeth").await, 0);
+    page.click_id("layer-comb").await;
+    page.settle().await;
+    super::steps::screenshot(&browser.client, "editor-comb.png", false).await;
+    let d = page
+        .run(
+            "const p = document.querySelector('#scene .comb-teeth'); return p ? p.getAttribute('d') : '';",
+            vec![],
+        )
+        .await;
+    let numbers: Vec<f64> = d
+        .as_str()
+        .unwrap()
+        .split(['M', 'L', ' '])
+        .filter(|s| !s.is_empty())
+        .map(|s| s.parse().unwrap())
+        .collect();
+    let teeth: Vec<[f64; 4]> = numbers
+        .chunks(4)
+        .map(|c| [c[0], c[1], c[2], c[3]])
+        .collect();
+    assert_eq!(teeth.len(), 201);
+    // Curvature by central differences of points (h = 1e-4), against each tooth.
+    let h = 1e-4;
+    let curve = sample();
+    let mut ratios = Vec::new();
+    for i in [10usize, 30, 50, 70, 90, 110, 130, 150, 170, 190] {
+        let u = i as f64 / 200.0;
+        let p = |v: f64| point_of(&app, &curve, v);
+        let (a, m, b) = (p(u - h).await, p(u).await, p(u + h).await);
+        let d1 = [(b[0] - a[0]) / (2.0 * h), (b[1] - a[1]) / (2.0 * h)];
+        let d2 = [
+            (b[0] - 2.0 * m[0] + a[0]) / (h * h),
+            (b[1] - 2.0 * m[1] + a[1]) / (h * h),
+        ];
+        let kappa = (d1[0] * d2[1] - d1[1] * d2[0]) / d1[0].hypot(d1[1]).powi(3);
+        if kappa.abs() < 0.05 {
+            continue; // near an inflection the ratio says nothing
+        }
+        let [x, y, ex, ey] = teeth[i];
+        assert!(
+            (x - m[0]).abs() < 1e-9 && (y - m[1]).abs() < 1e-9,
+            "tooth {i} starts on the curve"
+        );
+        let tooth = [ex - x, ey - y];
+        let length = tooth[0].hypot(tooth[1]);
+        let along = (tooth[0] * d1[0] + tooth[1] * d1[1]) / (length * d1[0].hypot(d1[1]));
+        assert!(
+            along.abs() < 1e-4,
+            "tooth {i} is normal to the curve ({along})"
+        );
+        let side = d1[0] * tooth[1] - d1[1] * tooth[0];
+        assert!(
+            side * kappa > 0.0,
+            "tooth {i} points to the centre of curvature"
+        );
+        ratios.push(length / kappa.abs());
+    }
+    assert!(ratios.len() >= 5, "{ratios:?}");
+    for ratio in &ratios {
+        assert!(
+            (ratio / ratios[0] - 1.0).abs() < 1e-3,
+            "teeth in proportion to the curvature: {ratios:?}"
+        );
+    }
+    page.click_id("layer-comb").await;
+    assert_eq!(count(&page, "#scene .comb-teeth").await, 0);
+    assert_eq!(page.script_errors().await, Vec::<String>::new());
+    browser.close().await;
+}
+
+/// The distance from `point` to `curve` (closest point, through the API).
+async fn distance_to(app: &TestApp, curve: &Value, point: [f64; 2]) -> f64 {
+    let (status, body) = app
+        .post_json(
+            "/v1/curves/closest-point",
+            &json!({"curve": curve, "points": [point]}),
+        )
+        .await;
+    assert_eq!(status, 200, "{body}");
+    body["results"][0]["distance"].as_f64().unwrap()
+}
+
+/// Clicks `pixels` one by one with the Points tool (key D); returns the points the page
+/// took (checked against the pixels clicked, within half a pixel).
+async fn click_points(page: &Page<'_>, pixels: &[(i64, i64)]) -> Vec<[f64; 2]> {
+    page.run("document.getElementById('canvas').focus();", vec![])
+        .await;
+    page.key('d', false).await;
+    assert_eq!(page.data("tool").await, "points");
+    let mut points = Vec::new();
+    for &pixel in pixels {
+        page.click_at(pixel).await;
+        points.push(page.to_curve(pixel).await);
+    }
+    page.settle().await;
+    let taken: Vec<[f64; 2]> = serde_json::from_str(&page.data("sketch").await).unwrap();
+    let scale = page.frame().await["scale"].as_f64().unwrap();
+    assert_eq!(taken.len(), points.len());
+    for (a, b) in taken.iter().zip(&points) {
+        assert!(
+            (a[0] - b[0]).hypot(a[1] - b[1]) * scale < 0.5,
+            "{a:?} vs {b:?}"
+        );
+    }
+    taken
+}
+
+#[tokio::test]
+async fn draw_by_points_interpolates_or_approximates_and_undo_goes_back() {
+    let app = spawn_app().await;
+    let browser = Browser::start().await;
+    let page = Page::open(&browser.client, &app.address).await;
+    let corner = page.to_screen([1.0, 0.5]).await;
+    let pixels: Vec<(i64, i64)> = [(0, 0), (60, -80), (140, -100), (220, -40), (300, -90)]
+        .iter()
+        .map(|(dx, dy)| (corner.0 + dx, corner.1 + dy))
+        .collect();
+    let points = click_points(&page, &pixels).await;
+    page.click_id("sketch-finish").await;
+    page.settle().await;
+    let through = page.curve().await;
+    assert_eq!(through["degree"], json!(3));
+    for point in &points {
+        let distance = distance_to(&app, &through, *point).await;
+        assert!(distance < 1e-9, "{point:?} is {distance} from the curve");
+    }
+    assert_eq!(page.data("sketch").await, "[]");
+    assert_eq!(page.data("tool").await, "edit");
+    page.ctrl_z(false).await;
+    assert_eq!(numbers(&page.curve().await), numbers(&sample()));
+
+    // Twelve points along a gentle wave, within a tolerance: fewer control points.
+    let pixels: Vec<(i64, i64)> = (0..12)
+        .map(|i| {
+            let x = f64::from(i) * 28.0;
+            (
+                corner.0 + x as i64,
+                corner.1 - 60 - (25.0 * (x / 60.0).sin()) as i64,
+            )
+        })
+        .collect();
+    let points = click_points(&page, &pixels).await;
+    let scale = page.frame().await["scale"].as_f64().unwrap();
+    let tolerance = 3.0 / scale; // three pixels
+    page.client
+        .find(fantoccini::Locator::Id("sketch-tolerance"))
+        .await
+        .unwrap()
+        .send_keys(&format!("{tolerance}"))
+        .await
+        .unwrap();
+    page.key('\u{E007}', false).await; // Enter, in the field
+    page.settle().await;
+    let near = page.curve().await;
+    assert!(
+        near["control_points"].as_array().unwrap().len() < points.len(),
+        "{near}"
+    );
+    for point in &points {
+        let distance = distance_to(&app, &near, *point).await;
+        assert!(
+            distance <= tolerance * (1.0 + 1e-9),
+            "{point:?} is {distance} from the curve"
+        );
+    }
+    assert!(page.data("message").await.contains("within"));
+    assert_eq!(page.script_errors().await, Vec::<String>::new());
+    browser.close().await;
+}
+
+/// The text of the page's download link (a data: URL).
+async fn downloaded(page: &Page<'_>) -> String {
+    let text = page
+        .run(
+            "const href = document.getElementById('download').href; \
+             return href.startsWith('data:') ? decodeURIComponent(href.slice(href.indexOf(',') + 1)) : '';",
+            vec![],
+        )
+        .await;
+    text.as_str().unwrap().to_owned()
+}
+
+/// Points of `curve` at eleven parameters over its domain (x and y), through the API.
+async fn samples_of(app: &TestApp, curve: &Value) -> Vec<[f64; 2]> {
+    let (status, body) = app
+        .post_json(
+            "/v1/curves/evaluate",
+            &json!({"curve": curve, "samples": 11}),
+        )
+        .await;
+    assert_eq!(status, 200, "{body}");
+    body["points"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| [p[0].as_f64().unwrap(), p[1].as_f64().unwrap()])
+        .collect()
+}
+
+/// Writes `text` as `target/<name>` and opens it with the page's file field.
+async fn open_file(page: &Page<'_>, name: &str, text: &str) {
+    let path = super::steps::target_dir().join(name);
+    std::fs::create_dir_all(super::steps::target_dir()).unwrap();
+    std::fs::write(&path, text).unwrap();
+    page.client
+        .find(fantoccini::Locator::Id("open-file"))
+        .await
+        .unwrap()
+        .send_keys(path.to_str().unwrap())
+        .await
+        .unwrap();
+    page.wait_until(
+        "the file is read",
+        "document.body.dataset.message.startsWith('Opened') || document.body.dataset.error !== ''",
+    )
+    .await;
+    page.settle().await;
+}
+
+#[tokio::test]
+async fn step_and_dxf_files_open_and_export_through_the_service() {
+    let app = spawn_app().await;
+    let browser = Browser::start().await;
+    let page = Page::open(&browser.client, &app.address).await;
+    // Export: the STEP file the page offers reads back (through the API) as the sample.
+    for format in ["step", "dxf"] {
+        page.click_id(&format!("export-{format}")).await;
+        page.settle().await;
+        let text = downloaded(&page).await;
+        let (status, body) = app
+            .post_json(
+                "/v1/curves/import",
+                &json!({"format": format, "data": text}),
+            )
+            .await;
+        assert_eq!(status, 200, "{body}");
+        let curves = body["curves"].as_array().unwrap();
+        assert_eq!(curves.len(), 1);
+        let mut read = curves[0].clone();
+        read.as_object_mut().unwrap().remove("source");
+        let (a, b) = (
+            samples_of(&app, &read).await,
+            samples_of(&app, &sample()).await,
+        );
+        for (p, q) in a.iter().zip(&b) {
+            assert!(
+                (p[0] - q[0]).hypot(p[1] - q[1]) < 1e-12,
+                "{format}: {p:?} vs {q:?}"
+            );
+        }
+    }
+
+    // A STEP file of two curves: the first is loaded (planar, full knots), the list offers
+    // the second.
+    let quadratic = json!({"degree": 2, "control_points": [[0, 0], [2, 4], [5, 4], [7, 0]],
+                           "knots": [0, 0, 0, 0.5, 1, 1, 1]});
+    let response = app
+        .post(
+            "/v1/curves/export",
+            &json!({"format": "step", "curves": [sample(), quadratic]}),
+        )
+        .await;
+    assert_eq!(response.status(), 200);
+    let file = response.text().await.unwrap();
+    open_file(&page, "editor-two-curves.step", &file).await;
+    assert_eq!(numbers(&page.curve().await), numbers(&sample()));
+    let options = page
+        .run(
+            "const s = document.getElementById('imported'); return [s.hidden, s.options.length];",
+            vec![],
+        )
+        .await;
+    assert_eq!(options, json!([false, 2]));
+    page.client
+        .find(fantoccini::Locator::Id("imported"))
+        .await
+        .unwrap()
+        .select_by_value("1")
+        .await
+        .unwrap();
+    page.settle().await;
+    assert_eq!(numbers(&page.curve().await), numbers(&quadratic));
+
+    // The DXF file ezdxf wrote (the API's example): its first spline, as the API reads it.
+    let example: Value = serde_json::from_str(
+        &std::fs::read_to_string(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/examples/curves-import-dxf.json"
+        ))
+        .unwrap(),
+    )
+    .unwrap();
+    let data = example["data"].as_str().unwrap();
+    open_file(&page, "editor-example.dxf", data).await;
+    let (_, body) = app.post_json("/v1/curves/import", &example).await;
+    let mut first = body["curves"][0].clone();
+    first.as_object_mut().unwrap().remove("source");
+    let (a, b) = (
+        samples_of(&app, &page.curve().await).await,
+        samples_of(&app, &first).await,
+    );
+    for (p, q) in a.iter().zip(&b) {
+        assert!(
+            (p[0] - q[0]).hypot(p[1] - q[1]) < 1e-12,
+            "dxf: {p:?} vs {q:?}"
+        );
+    }
+    assert_eq!(page.script_errors().await, Vec::<String>::new());
+    browser.close().await;
+}
