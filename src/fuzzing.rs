@@ -18,6 +18,9 @@ use tower::ServiceExt;
 
 use crate::config::Config;
 
+/// The content types of exported files (`/v1/curves/export`).
+const FILE_TYPES: [&str; 2] = ["model/step", "image/vnd.dxf"];
+
 /// Largest answer read back (the default limits keep answers far below it).
 const MAX_ANSWER_BYTES: usize = 64 * 1024 * 1024;
 
@@ -83,6 +86,18 @@ impl Target {
         let text = String::from_utf8_lossy(&bytes);
         if status.is_server_error() {
             return Err(format!("{path}: server error {status}: {text}"));
+        }
+        // A file written by `/v1/curves/export` is the one answer that is not JSON: it must
+        // be text of its own type, read back elsewhere (the `step_import` and `dxf_import`
+        // targets, scripts/interop-roundtrip).
+        if status.is_success() && FILE_TYPES.iter().any(|t| content_type.starts_with(t)) {
+            return if std::str::from_utf8(&bytes).is_ok_and(|file| !file.trim().is_empty()) {
+                Ok(())
+            } else {
+                Err(format!(
+                    "{path}: {status}: an empty or non-UTF-8 {content_type} file"
+                ))
+            };
         }
         let answer: Value = serde_json::from_slice(&bytes).map_err(|error| {
             format!("{path}: {status} with a body that is not JSON ({error}): {text}")
