@@ -240,7 +240,7 @@ async fn the_weights_method_drags_with_a_polyline_preview_and_commits_a_rational
         "document.querySelector('#scene .layer-preview polyline.preview') !== null",
     )
     .await;
-    super::steps::screenshot(&browser.client, "editor-weights.png", false).await;
+    super::steps::screenshot(&browser.client, "editor-weights.png", true).await;
     page.release().await;
     page.settle().await;
     let committed = page.curve().await;
@@ -382,7 +382,7 @@ async fn pins_tangent_locks_and_fixed_poles_hold_on_the_committed_curve() {
     page.drag(dot, &[((dot.0 + aim.0) / 2, (dot.1 + aim.1) / 2), aim])
         .await;
     let committed = page.curve().await;
-    super::steps::screenshot(&browser.client, "editor-constraints.png", false).await;
+    super::steps::screenshot(&browser.client, "editor-constraints.png", true).await;
     assert_ne!(
         numbers(&committed),
         numbers(&original),
@@ -453,7 +453,7 @@ async fn the_curvature_comb_agrees_with_finite_differences() {
     assert_eq!(count(&page, "#scene .comb-teeth").await, 0);
     page.click_id("layer-comb").await;
     page.settle().await;
-    super::steps::screenshot(&browser.client, "editor-comb.png", false).await;
+    super::steps::screenshot(&browser.client, "editor-comb.png", true).await;
     let d = page
         .run(
             "const p = document.querySelector('#scene .comb-teeth'); return p ? p.getAttribute('d') : '';",
