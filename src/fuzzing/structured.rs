@@ -11,12 +11,19 @@
 //! * tessellation: every vertex is a curve point, parameters increasing, ends included;
 //! * cubic curves, shape editing: every knot or control-point solution lands on its target
 //!   (re-evaluated by the spline core), `nearest` solutions land on the nearest point, region
-//!   polygons are finite.
+//!   polygons are finite;
+//! * every degree, the one edit (`shape::edit`) with every applicable method under pins, a
+//!   prescribed or kept tangent and a fixed control point drawn from the case: every kept
+//!   solution lands on its target, keeps each condition (the old and new curves' derivatives
+//!   compared here, not by the constraint code), leaves the fixed control point and its
+//!   weight alone, has positive finite weights and a finite deviation.
 
 use arbitrary::{Arbitrary, Unstructured};
 
 use crate::shape::{
-    self, KnotPair, PolygonOptions, ShapeQuery, SideChoice, SolveOptions, nearest_reachable,
+    self, ConstraintSet, ConstraintSpec, EditContext, EditOptions, FixedPoles, KnotPair,
+    MethodKind, PoleVariables, PolygonOptions, ShapeQuery, SideChoice, SolveOptions,
+    nearest_reachable,
 };
 use crate::spline::vector::{Point, distance};
 use crate::spline::{ClosestPointSearch, Curve, CurveLimits};
@@ -152,6 +159,7 @@ pub fn check_case(case: &Case) -> Result<(), String> {
     if curve.degree() == 3 {
         check_shape(case, size)?;
     }
+    check_edit(case, size)?;
     Ok(())
 }
 
@@ -297,6 +305,162 @@ fn check_shape(case: &Case, size: f64) -> Result<(), String> {
         for region in &candidate.regions {
             if !region.polygon.iter().flatten().all(|v| v.is_finite()) {
                 return Err("regions: a polygon has a non-finite vertex".into());
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The conditions of [`check_edit`], drawn from the case: a pin of the point at the first
+/// fraction, and at the second a pinned or kept tangent (or none), chosen by the query's signs.
+fn drawn_conditions(case: &Case, t: f64) -> Vec<ConstraintSpec<'static>> {
+    let mut specs = Vec::new();
+    let pin = case.parameter(0);
+    if (pin - t).abs() > 1e-3 * (case.curve.domain().1 - case.curve.domain().0) {
+        specs.push(ConstraintSpec {
+            parameter: pin,
+            order: 0,
+            value: None,
+            direction_only: false,
+        });
+    }
+    if case.query[0] > 0.0 {
+        specs.push(ConstraintSpec {
+            parameter: case.parameter(1),
+            order: 1,
+            value: None,
+            direction_only: case.query[1] > 0.0,
+        });
+    }
+    specs
+}
+
+/// The `order`-th derivative of `curve` at `u`, or `None` outside its domain.
+fn derivative(curve: &Curve, u: f64, order: usize) -> Option<Point> {
+    let mut values = [[0.0; 3]; 3];
+    curve.derivatives(u, &mut values[..=order]).ok()?;
+    Some(values[order])
+}
+
+/// A loose scale of the `order`-th derivative's rounding on `curve` at `u`: the size over the
+/// span's width to the `order` (times the degree's factor), the basis derivatives' growth.
+fn derivative_scale(curve: &Curve, u: f64, order: usize, size: f64) -> f64 {
+    let knots = curve.knots();
+    let p = curve.degree();
+    let right = knots.partition_point(|&k| k <= u).min(knots.len() - 1);
+    let left = right.saturating_sub(1);
+    let mut width = knots[right] - knots[left];
+    if width <= 0.0 {
+        width = curve.domain().1 - curve.domain().0;
+    }
+    size * (4.0 * p as f64 / width).powi(order as i32)
+}
+
+fn check_edit(case: &Case, size: f64) -> Result<(), String> {
+    let curve = &case.curve;
+    let t = case.parameter(2);
+    let dimension = curve.dimension().count();
+    let base = curve.point_unchecked(t);
+    let target: Vec<f64> = (0..dimension)
+        .map(|c| base[c] + case.query[c] / 16.0)
+        .collect();
+    let specs = drawn_conditions(case, t);
+    let Ok(constraints) = ConstraintSet::new(curve, t, &specs) else {
+        return Ok(());
+    };
+    let count = curve.control_points().len();
+    let fixed_index = (case.relative_tolerance * 2560.0) as usize % (count + 1);
+    let fixed = FixedPoles::from_fn(count, |i| i == fixed_index);
+    let variables = PoleVariables::free_poles(&fixed);
+    let query = ShapeQuery {
+        keep_domain: case.fractions[3] < 0.7,
+        ..ShapeQuery::new(curve, t)
+    };
+    let context = EditContext {
+        query,
+        constraints: &constraints,
+        fixed: &fixed,
+        variables: &variables,
+    };
+    let methods: &[MethodKind] = if curve.degree() == 3 {
+        &[
+            MethodKind::Knots,
+            MethodKind::ControlPoints,
+            MethodKind::Weights,
+        ]
+    } else {
+        &[MethodKind::ControlPoints, MethodKind::Weights]
+    };
+    let options = EditOptions {
+        measure_deviation: true,
+        nearest: true,
+    };
+    let Ok(outcome) = shape::edit(&context, methods, &target, options) else {
+        return Ok(());
+    };
+    let mut target_point = [0.0; 3];
+    target_point[..dimension].copy_from_slice(&target);
+    for solution in &outcome.solutions {
+        let method = solution.detail.method();
+        let new = &solution.curve;
+        let reached = new
+            .point(t)
+            .map_err(|e| format!("edit {method:?}: the new curve has no point at t: {e}"))?;
+        if distance(reached, target_point) > 1e-6 * size {
+            return Err(format!(
+                "edit {method:?}: misses the target by {}",
+                distance(reached, target_point)
+            ));
+        }
+        if !solution.max_deviation.is_some_and(f64::is_finite) {
+            return Err(format!("edit {method:?}: a deviation is not finite"));
+        }
+        if (0..count).any(|i| !(new.weight(i).is_finite() && new.weight(i) > 0.0)) {
+            return Err(format!(
+                "edit {method:?}: a weight is not positive and finite"
+            ));
+        }
+        if fixed_index < count
+            && (new.control_points()[fixed_index] != curve.control_points()[fixed_index]
+                || new.weight(fixed_index) != curve.weight(fixed_index))
+        {
+            return Err(format!(
+                "edit {method:?}: the fixed control point {fixed_index} changed"
+            ));
+        }
+        for spec in &specs {
+            let order = spec.order as usize;
+            let u = curve
+                .snap_to_domain(spec.parameter)
+                .unwrap_or(spec.parameter);
+            let (Some(old), Some(now)) = (derivative(curve, u, order), derivative(new, u, order))
+            else {
+                return Err(format!(
+                    "edit {method:?}: a condition's parameter {u} left the domain"
+                ));
+            };
+            let scale = derivative_scale(curve, u, order, size);
+            if spec.direction_only {
+                let (a, b) = (old, now);
+                let cross = [
+                    a[1] * b[2] - a[2] * b[1],
+                    a[2] * b[0] - a[0] * b[2],
+                    a[0] * b[1] - a[1] * b[0],
+                ];
+                let (la, lb) = (distance(a, [0.0; 3]), distance(b, [0.0; 3]));
+                let dot: f64 = (0..3).map(|c| a[c] * b[c]).sum();
+                if la > 1e-6 * scale
+                    && (distance(cross, [0.0; 3]) > 1e-6 * la * lb.max(scale * 1e-6) || dot <= 0.0)
+                {
+                    return Err(format!(
+                        "edit {method:?}: the tangent direction at {u} turned ({a:?} -> {b:?})"
+                    ));
+                }
+            } else if distance(old, now) > 1e-6 * scale {
+                return Err(format!(
+                    "edit {method:?}: the order-{order} pin at {u} moved by {} ({old:?} -> {now:?})",
+                    distance(old, now)
+                ));
             }
         }
     }
