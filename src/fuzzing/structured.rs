@@ -441,20 +441,18 @@ fn check_edit(case: &Case, size: f64) -> Result<(), String> {
             };
             let scale = derivative_scale(curve, u, order, size);
             if spec.direction_only {
-                let (a, b) = (old, now);
-                let cross = [
-                    a[1] * b[2] - a[2] * b[1],
-                    a[2] * b[0] - a[0] * b[2],
-                    a[0] * b[1] - a[1] * b[0],
-                ];
-                let (la, lb) = (distance(a, [0.0; 3]), distance(b, [0.0; 3]));
-                let dot: f64 = (0..3).map(|c| a[c] * b[c]).sum();
-                if la > 1e-6 * scale
-                    && (distance(cross, [0.0; 3]) > 1e-6 * la * lb.max(scale * 1e-6) || dot <= 0.0)
-                {
-                    return Err(format!(
-                        "edit {method:?}: the tangent direction at {u} turned ({a:?} -> {b:?})"
-                    ));
+                // The contract bounds the new tangent's component across the old direction
+                // (absolute, like a value), and its component along it must stay positive.
+                let length = distance(old, [0.0; 3]);
+                if length > 1e-6 * scale {
+                    let unit = old.map(|v| v / length);
+                    let along: f64 = (0..3).map(|c| now[c] * unit[c]).sum();
+                    let across = distance(now, unit.map(|v| v * along));
+                    if across > 1e-6 * scale || along <= 0.0 {
+                        return Err(format!(
+                            "edit {method:?}: the tangent direction at {u} turned ({old:?} -> {now:?})"
+                        ));
+                    }
                 }
             } else if distance(old, now) > 1e-6 * scale {
                 return Err(format!(
