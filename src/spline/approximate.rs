@@ -26,6 +26,10 @@
 //! points, or a fit so nearly singular that its poles swing far from the points), the
 //! reduction starts instead from the curve interpolating every point (distance 0 at the
 //! points), which is within any tolerance.
+//!
+//! One file for one algorithm: the fit, its certification, the refinement and the reduction
+//! work on the same knot vector and fit state and are read together (about 850 lines); the
+//! rest is its unit tests.
 
 use super::banded::SymmetricBandedMatrix;
 use super::basis::{CAP, MAX_DEGREE, basis_functions, find_span};

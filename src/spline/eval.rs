@@ -22,6 +22,10 @@
 //!   `a_0 = C(p, 0) B_0`, `a_i = a_{i-1} (1 - s) + s^i C(p, i) B_i` (every term non-negative
 //!   weight times a control point, as in de Casteljau, but `O(p)` per point): no allocation
 //!   and no span search per point beyond a check of the span used last.
+//!
+//! One file, not split: the single-parameter, derivative and batch paths share the span's
+//! local net and the accuracy argument above, which should stay beside the code it covers
+//! (about 710 lines); the rest is its unit tests.
 
 use super::basis::{CAP, basis_functions_of_every_degree};
 use super::bernstein::BINOMIAL;
