@@ -92,6 +92,37 @@ impl ClosestPointError {
     }
 }
 
+impl Curve {
+    /// `range` (default: the whole domain) checked against the domain, each end just outside
+    /// it taken as the domain's end ([`Curve::snap_to_domain`]); shared by the closest-point
+    /// search and the arc length.
+    pub(crate) fn checked_range(
+        &self,
+        range: Option<(f64, f64)>,
+    ) -> Result<(f64, f64), ClosestPointError> {
+        let domain = self.domain();
+        let (lo, hi) = range.unwrap_or(domain);
+        let mut ends = [lo, hi];
+        for (index, value) in ends.iter_mut().enumerate() {
+            if !value.is_finite() {
+                return Err(ClosestPointError::NonFiniteRange { index });
+            }
+            *value = self
+                .snap_to_domain(*value)
+                .ok_or(ClosestPointError::RangeOutsideDomain {
+                    index,
+                    value: *value,
+                    domain,
+                })?;
+        }
+        let [lo, hi] = ends;
+        if lo > hi {
+            return Err(ClosestPointError::ReversedRange { lo, hi });
+        }
+        Ok((lo, hi))
+    }
+}
+
 /// The closest point found for one query.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ClosestPoint {
@@ -219,25 +250,7 @@ impl<'c> ClosestPointSearch<'c> {
     /// range just outside the domain is taken as the domain's end ([`Curve::snap_to_domain`]).
     pub fn new(curve: &'c Curve, range: Option<(f64, f64)>) -> Result<Self, ClosestPointError> {
         let domain = curve.domain();
-        let (lo, hi) = range.unwrap_or(domain);
-        // Ends just outside the domain are its ends (`Curve::snap_to_domain`).
-        let mut ends = [lo, hi];
-        for (index, value) in ends.iter_mut().enumerate() {
-            if !value.is_finite() {
-                return Err(ClosestPointError::NonFiniteRange { index });
-            }
-            *value = curve
-                .snap_to_domain(*value)
-                .ok_or(ClosestPointError::RangeOutsideDomain {
-                    index,
-                    value: *value,
-                    domain,
-                })?;
-        }
-        let [lo, hi] = ends;
-        if lo > hi {
-            return Err(ClosestPointError::ReversedRange { lo, hi });
-        }
+        let (lo, hi) = curve.checked_range(range)?;
         let p = curve.degree();
         let knots = curve.knots();
         let mut points = Vec::new();

@@ -21,6 +21,7 @@ use std::sync::LazyLock;
 
 use super::basis::CAP;
 use super::bezier::BezierPiece;
+use super::closest::ClosestPointError;
 use super::curve::Curve;
 
 /// The relative error of [`ArcLength::length`] that the service states: at most `1e-10`.
@@ -37,6 +38,25 @@ pub const HALVINGS_PER_PIECE: usize = 32;
 
 /// Segment halvings allowed beyond [`HALVINGS_PER_PIECE`] per piece.
 pub const EXTRA_HALVINGS: usize = 4096;
+
+/// The range's faults are the closest-point search's (the same check, [`Curve::checked_range`]).
+impl From<ClosestPointError> for LengthError {
+    fn from(error: ClosestPointError) -> Self {
+        match error {
+            ClosestPointError::NonFiniteRange { index } => LengthError::NonFiniteRange { index },
+            ClosestPointError::RangeOutsideDomain {
+                index,
+                value,
+                domain,
+            } => LengthError::RangeOutsideDomain {
+                index,
+                value,
+                domain,
+            },
+            ClosestPointError::ReversedRange { lo, hi } => LengthError::ReversedRange { lo, hi },
+        }
+    }
+}
 
 /// Newton/bisection steps at most when solving `L(u) = ℓ`.
 const MAX_INVERSE_STEPS: usize = 100;
@@ -212,25 +232,7 @@ impl Curve {
     /// to relative accuracy [`LENGTH_RELATIVE_ERROR`] (module docs). A jump at a knot of
     /// multiplicity `p + 1` adds nothing (each piece is measured on its own).
     pub fn arc_length(&self, range: Option<(f64, f64)>) -> Result<ArcLength, LengthError> {
-        let domain = self.domain();
-        let (lo, hi) = range.unwrap_or(domain);
-        let mut ends = [lo, hi];
-        for (index, value) in ends.iter_mut().enumerate() {
-            if !value.is_finite() {
-                return Err(LengthError::NonFiniteRange { index });
-            }
-            *value = self
-                .snap_to_domain(*value)
-                .ok_or(LengthError::RangeOutsideDomain {
-                    index,
-                    value: *value,
-                    domain,
-                })?;
-        }
-        let [lo, hi] = ends;
-        if lo > hi {
-            return Err(LengthError::ReversedRange { lo, hi });
-        }
+        let (lo, hi) = self.checked_range(range).map_err(LengthError::from)?;
         let pieces: Vec<BezierPiece> = self
             .bezier_pieces()
             .filter(|piece| piece.domain.1 > lo && piece.domain.0 < hi)
