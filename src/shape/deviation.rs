@@ -165,22 +165,20 @@ fn maximum_squared_gap<const POINTS: usize, const LEN: usize>(
     // gap lets the pieces far below it go without a single halving (a quarter fewer
     // instructions for a weight solution's deviation; samples at 1/4 and 3/4 too gained 1%).
     let degree = len - 1;
-    let value_inside = |interval: &Interval<LEN>, s: f64| {
-        // Σ b_k C(d, k) s^k (1 - s)^(d - k) = (1 - s)^d Σ b_k C(d, k) r^k with r = s / (1 - s),
-        // by Horner's rule; (1 - s)^d cancels in a ratio.
-        let r = s / (1.0 - s);
-        let horner = |coefficients: &[f64; LEN]| {
+    let midpoint_value = |interval: &Interval<LEN>| {
+        // A Bernstein polynomial at s = 1/2 is Σ b_k C(d, k) / 2^d; the 2^d cancels in a ratio.
+        let at_half = |coefficients: &[f64; LEN]| {
             coefficients[..len]
                 .iter()
                 .zip(&BINOMIAL[degree][..len])
-                .rev()
-                .fold(0.0, |sum, (b, c)| sum * r + b * c)
+                .map(|(b, c)| b * c)
+                .sum::<f64>()
         };
-        let numerator = horner(&interval.numerator);
+        let numerator = at_half(&interval.numerator);
         if rational {
-            numerator / horner(&interval.denominator)
+            numerator / at_half(&interval.denominator)
         } else {
-            numerator * (1.0 - s).powi(degree as i32)
+            numerator * 0.5f64.powi(degree as i32)
         }
     };
     let mut best = stack
@@ -188,7 +186,7 @@ fn maximum_squared_gap<const POINTS: usize, const LEN: usize>(
         .map(|interval| {
             value_at(interval, 0)
                 .max(value_at(interval, len - 1))
-                .max(value_inside(interval, 0.5))
+                .max(midpoint_value(interval))
         })
         .fold(0.0, f64::max);
     let mut halvings = 0;
