@@ -258,10 +258,12 @@ export function bind(elements, actions) {
     if (event.key === " ") setSpace(false);
   });
   window.addEventListener("blur", () => setSpace(false));
+  // The drawing takes its frame's size (main.js sizes it in pixels).
+  const frame = canvas.parentElement;
   new ResizeObserver(() => {
+    actions.resize({ width: frame.clientWidth, height: frame.clientHeight });
     bounds = canvas.getBoundingClientRect();
-    actions.resize({ width: canvas.clientWidth, height: canvas.clientHeight });
-  }).observe(canvas);
+  }).observe(frame);
 
   elements.undo.addEventListener("click", () => actions.undo());
   elements.redo.addEventListener("click", () => actions.redo());

@@ -57,11 +57,22 @@ function fitView() {
   store.set(model.withFrame(state, viewport.fit(geometry.extent(model.editBase(state)), state.view.size)));
 }
 
+/** Gives the drawing `size` in pixels. Its size is set, not `100%` of its frame: the browser
+ * lays the frame out more than once whenever the panel beside it changes (a drag move), and a
+ * drawing that followed each of those sizes would lay all its marks out again every time
+ * (2–3 ms per move on a 300-pole curve, measured by tests/editor/timing.rs). */
+function sizeCanvas(size) {
+  for (const [name, value] of [["width", size.width], ["height", size.height], ["viewBox", `0 0 ${size.width} ${size.height}`]]) {
+    if (elements.canvas.getAttribute(name) !== String(value)) elements.canvas.setAttribute(name, String(value));
+  }
+}
+
 function resize(size) {
   const state = store.get();
   if (size.width === 0 || size.height === 0) return;
   const before = state.view.size;
-  elements.canvas.setAttribute("viewBox", `0 0 ${size.width} ${size.height}`);
+  sizeCanvas(size);
+  if (before.width === size.width && before.height === size.height) return;
   store.set({ ...state, view: { size, frame: viewport.resized(state.view.frame, before, size) } });
 }
 
@@ -96,8 +107,9 @@ function start() {
     stripWidth = Math.max(elements.strip.clientWidth, 100);
     if (store.get()) draw(store.get());
   }).observe(elements.strip);
-  const size = { width: Math.max(elements.canvas.clientWidth, 100), height: Math.max(elements.canvas.clientHeight, 100) };
-  elements.canvas.setAttribute("viewBox", `0 0 ${size.width} ${size.height}`);
+  const frame = elements.canvas.parentElement;
+  const size = { width: Math.max(frame.clientWidth, 100), height: Math.max(frame.clientHeight, 100) };
+  sizeCanvas(size);
   const first = structuredClone(SAMPLE_CUBIC);
   store.setup(model.initialState(first, viewport.fit(geometry.extent(first), size), size), draw);
   connection.watch(() => {

@@ -14,6 +14,13 @@ export function element(name, attributes, parent) {
   return node;
 }
 
+/** Sets `node`'s attribute `name` to `value` unless it has it already: the browser takes a
+ * write of the same value as a change too and matches the element's style again (DevTools'
+ * invalidation tracking shows one per drag move for the scene's transform). */
+export function setAttribute(node, name, value) {
+  if (node.getAttribute(name) !== value) node.setAttribute(name, value);
+}
+
 /** "x,y x,y …" of the points' x–y projections. */
 export const pairs = (points) => points.map((p) => `${p[0]},${p[1]}`).join(" ");
 

@@ -3,7 +3,7 @@
 // cut to the strip's width.
 
 import { fullKnots, isTrimmed } from "./geometry.js";
-import { element, layer, redraw } from "./render.js";
+import { element, layer, redraw, setAttribute } from "./render.js";
 import { editBase } from "./state.js";
 
 const HEIGHT = 56;
@@ -36,7 +36,7 @@ export function stripLabel(knots, room) {
 
 /** Draws the strip of `state` into the <svg> `strip`, `width` pixels wide. */
 export function drawStrip(state, strip, width) {
-  strip.setAttribute("viewBox", `0 0 ${width} ${HEIGHT}`);
+  setAttribute(strip, "viewBox", `0 0 ${width} ${HEIGHT}`);
   const base = editBase(state);
   const knots = fullKnots(base);
   const { changed, preview } = changes(state);

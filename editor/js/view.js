@@ -3,7 +3,7 @@
 // only when what it shows changed. It reads the state and never changes it.
 
 import { editBase } from "./state.js";
-import { element, layer, pairs, redraw } from "./render.js";
+import { element, layer, pairs, redraw, setAttribute } from "./render.js";
 import { gridStep, toScreen, visibleBox } from "./viewport.js";
 
 /** Radius of the dots, in pixels. */
@@ -197,7 +197,7 @@ function drawDots(state, frame, group) {
 /** Draws `state` into `scene` (the <g> inside the drawing). */
 export function drawScene(state, scene) {
   const { frame, size } = state.view;
-  scene.setAttribute("transform", `matrix(${frame.scale} 0 0 ${-frame.scale} ${frame.offset[0]} ${frame.offset[1]})`);
+  setAttribute(scene, "transform", `matrix(${frame.scale} 0 0 ${-frame.scale} ${frame.offset[0]} ${frame.offset[1]})`);
   const base = editBase(state);
   const shows = state.layers;
   const layers = Object.fromEntries(["grid", "regions", "control", "comb", "curve", "preview", "marks", "grips", "conditions", "sketch", "dots"].map(

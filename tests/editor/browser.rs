@@ -158,3 +158,45 @@ fn free_port() -> u16 {
     let listener = TcpListener::bind("127.0.0.1:0").expect("bind a free port");
     listener.local_addr().unwrap().port()
 }
+
+/// A Chrome DevTools Protocol command sent through chromedriver's `goog/cdp/execute`
+/// endpoint (e.g. `Performance.getMetrics`, whose counters split the page's main-thread time
+/// into script, style, layout and the rest).
+#[derive(Debug)]
+struct DevToolsCommand {
+    command: String,
+    parameters: serde_json::Value,
+}
+
+impl fantoccini::wd::WebDriverCompatibleCommand for DevToolsCommand {
+    fn endpoint(
+        &self,
+        base_url: &url::Url,
+        session_id: Option<&str>,
+    ) -> Result<url::Url, url::ParseError> {
+        base_url.join(&format!(
+            "session/{}/goog/cdp/execute",
+            session_id.unwrap_or_default()
+        ))
+    }
+
+    fn method_and_body(&self, _request_url: &url::Url) -> (axum::http::Method, Option<String>) {
+        let body = json!({ "cmd": self.command, "params": self.parameters });
+        (axum::http::Method::POST, Some(body.to_string()))
+    }
+}
+
+/// Sends the DevTools command `command` with `parameters` and returns its result.
+pub async fn devtools(
+    client: &Client,
+    command: &str,
+    parameters: serde_json::Value,
+) -> serde_json::Value {
+    client
+        .issue_cmd(DevToolsCommand {
+            command: command.to_owned(),
+            parameters,
+        })
+        .await
+        .unwrap_or_else(|error| panic!("DevTools {command}: {error}"))
+}

@@ -4,14 +4,15 @@
 //! the pointer event's timestamp and when the preview was in the page (and the next animation
 //! frame); the test prints the 95th percentile and median, split into the parts (event to
 //! handler, waiting for the request before, the request, drawing) and beside the floor (a
-//! bare request's round trip from the page under the same load), and writes them to
-//! `target/editor-drag-timings.txt`. A measurement, not a pass/fail timing: it checks that the
+//! bare request's round trip from the page under the same load), with the page's main-thread
+//! time per move split by DevTools' counters (script, style, layout, all tasks), and writes
+//! them to `target/editor-drag-timings.txt`. A measurement, not a pass/fail timing: it checks that the
 //! drag ran (every move seen, previews drawn) and committed the kept family's solution. Run it
 //! alone for numbers: `cargo test --test editor drag_to_redraw -- --nocapture`.
 
 use serde_json::Value;
 
-use super::browser::Browser;
+use super::browser::{Browser, devtools};
 use super::page::Page;
 use super::steps::{
     apply, many_poles, numbers, p95, paste, pick, sample, solve_family, target_dir,
@@ -29,6 +30,33 @@ struct Timing {
     answered: f64,
     drawn: f64,
     frame: Option<f64>,
+}
+
+/// The page's main-thread counters from DevTools' `Performance.getMetrics`: script, style,
+/// layout and all tasks, in milliseconds, and how often style and layout ran.
+async fn main_thread_work(browser: &Browser) -> Vec<(&'static str, f64)> {
+    let answer = devtools(
+        &browser.client,
+        "Performance.getMetrics",
+        serde_json::json!({}),
+    )
+    .await;
+    let metrics = answer["metrics"].as_array().cloned().unwrap_or_default();
+    let read = |name: &str| {
+        metrics
+            .iter()
+            .find(|metric| metric["name"] == name)
+            .and_then(|metric| metric["value"].as_f64())
+            .unwrap_or(f64::NAN)
+    };
+    vec![
+        ("script ms", 1000.0 * read("ScriptDuration")),
+        ("style ms", 1000.0 * read("RecalcStyleDuration")),
+        ("layout ms", 1000.0 * read("LayoutDuration")),
+        ("tasks ms", 1000.0 * read("TaskDuration")),
+        ("style runs", read("RecalcStyleCount")),
+        ("layouts", read("LayoutCount")),
+    ]
 }
 
 /// Seconds the server spent on `route` so far and how many requests: the latency
@@ -76,9 +104,19 @@ async fn measure(curve: Value, t: f64, label: &str) -> String {
         })
         .collect();
     let before = server_time(&app, "/v1/shape/solve").await;
+    devtools(&browser.client, "Performance.enable", serde_json::json!({})).await;
+    let work_before = main_thread_work(&browser).await;
     page.drag_paced(dot, &path).await;
     page.settle().await;
+    let work_after = main_thread_work(&browser).await;
     let after = server_time(&app, "/v1/shape/solve").await;
+    let work: Vec<String> = work_after
+        .iter()
+        .zip(&work_before)
+        .map(|((name, after), (_, before))| {
+            format!("{name} {:.2}", (after - before) / MOVES as f64)
+        })
+        .collect();
     let server_ms = 1000.0 * (after.0 - before.0) / (after.1 - before.1);
     let raw = page
         .run(
@@ -158,7 +196,7 @@ async fn measure(curve: Value, t: f64, label: &str) -> String {
          preview in the page: p95 {:.2} ms, median {:.2} ms; to the next frame: p95 {:.2} ms; \
          p95 of the parts: event to handler {:.2}, waiting {:.2}, request {:.2} (median {:.2}; \
          the server's own mean {:.2}), drawing {:.2} ms; a bare request from the page: p95 \
-         {:.2} ms, median {:.2} ms; load average {}\n",
+         {:.2} ms, median {:.2} ms; the page's main thread per move: {}; load average {}\n",
         timings.len(),
         median(&intervals),
         p95(&mut total.clone()),
@@ -172,6 +210,7 @@ async fn measure(curve: Value, t: f64, label: &str) -> String {
         p95(&mut part(&|t| t.drawn - t.answered)),
         p95(&mut bare.clone()),
         median(&bare),
+        work.join(", "),
         load.split_whitespace()
             .take(3)
             .collect::<Vec<_>>()
