@@ -761,3 +761,41 @@ async fn step_and_dxf_files_open_and_export_through_the_service() {
     assert_eq!(page.script_errors().await, Vec::<String>::new());
     browser.close().await;
 }
+
+/// Whether `curve` (periodic) closes: its points at the two ends of the period agree.
+async fn closes(app: &TestApp, curve: &Value) -> bool {
+    let knots = curve["knots"].as_array().unwrap();
+    let (first, last) = (
+        knots[0].as_f64().unwrap(),
+        knots[knots.len() - 1].as_f64().unwrap(),
+    );
+    let a = point_of(app, curve, first).await;
+    let b = point_of(app, curve, last).await;
+    a.iter().zip(&b).all(|(x, y)| (x - y).abs() < 1e-12)
+}
+
+#[tokio::test]
+async fn a_periodic_curve_is_dragged_anywhere_even_across_its_seam_and_stays_periodic() {
+    let app = spawn_app().await;
+    let browser = Browser::start().await;
+    let page = Page::open(&browser.client, &app.address).await;
+    let closed = json!({"degree": 3, "periodic": true,
+        "control_points": [[2, 0], [1, 1.7], [-1, 1.7], [-2, 0], [-1, -1.7], [1, -1.7]],
+        "knots": [0, 0.5, 1, 1.5, 2, 2.5, 3], "multiplicities": [1, 1, 1, 1, 1, 1, 1]});
+    // In the middle of the period, and next to its seam (t = 0 = 3) from both sides.
+    for t in [1.2, 0.05, 2.95] {
+        paste(&page, &closed).await;
+        let (t, dot) = pick(&page, &app, &closed, t).await;
+        let aim = (dot.0 + 14, dot.1 - 17);
+        let target = drag_target(&page, dot, aim).await;
+        page.drag(dot, &[(dot.0 + 7, dot.1 - 8), aim]).await;
+        let committed = page.curve().await;
+        assert_eq!(committed["periodic"], json!(true), "t = {t}: {committed}");
+        assert_ne!(numbers(&committed), numbers(&closed), "t = {t}: the curve changed");
+        assert!(closes(&app, &committed).await, "t = {t}: {committed}");
+        let sent = sent_target(&page, target).await;
+        assert_close(&point_of(&app, &committed, t).await, &sent, "s(t)");
+    }
+    assert_eq!(page.script_errors().await, Vec::<String>::new());
+    browser.close().await;
+}
