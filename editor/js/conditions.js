@@ -14,10 +14,10 @@ import { PICK_RADIUS } from "./view.js";
 /** The most conditions the service takes in one request (API: at most 32 constraints). */
 const MOST_CONSTRAINTS = 32;
 
-/** The state with new `constraints` and `fixed` control points: the pick's solutions list
- * belongs to the old conditions and is dropped. */
+/** The state with new `constraints` and `fixed` control points, a step of the history (undo
+ * takes them back): the pick's solutions list belongs to the old conditions and is dropped. */
 function withConditions(state, constraints, fixed, message) {
-  return { ...state, constraints, fixed, lastSolutions: null, family: null, message, error: "" };
+  return { ...model.commitConditions(state, constraints, fixed), lastSolutions: null, family: null, message, error: "" };
 }
 
 /** Draws the curve again with the new conditions (their marks, and the regions at the pick,

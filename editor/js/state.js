@@ -3,7 +3,7 @@
 // result (event → new state → draw).
 
 import { LAYERS, METHODS, SNAPS } from "./options.js";
-import { domain, usableMethods } from "./geometry.js";
+import { usableMethods } from "./geometry.js";
 
 /** A fresh state editing `curve`, drawn in `frame` on a drawing of `size`. */
 export function initialState(curve, frame, size) {
@@ -46,15 +46,6 @@ export function conditions(state) {
   return { constraints: state.constraints, fixed: state.fixed };
 }
 
-/** The conditions that still fit `curve` (after undo or redo to another curve): parameters
- * inside its domain, control point indices among its own. */
-function fitting(state, curve) {
-  const [lo, hi] = domain(curve);
-  const constraints = state.constraints.filter((c) => c.parameter >= lo && c.parameter <= hi);
-  const fixed = state.fixed.filter((index) => index < curve.control_points.length);
-  return constraints.length === state.constraints.length && fixed.length === state.fixed.length ? state : { ...state, constraints, fixed };
-}
-
 /** The committed curve. */
 export function currentCurve(state) {
   return state.history.present;
@@ -65,10 +56,22 @@ export function editBase(state) {
   return state.pick?.base ?? state.history.present;
 }
 
+/** The history keeps steps of the document: a curve and the conditions (pins, tangent locks,
+ * fixed control points) it was edited under. `present` is the committed curve; the
+ * conditions now are the state's own. */
+function step(state) {
+  return { curve: state.history.present, constraints: state.constraints, fixed: state.fixed };
+}
+
 /** `curve` committed on top of the history (redo cleared). */
 export function commit(state, curve) {
-  const { past, present } = state.history;
-  return { ...state, history: { past: [...past, present], present: curve, future: [] } };
+  const { past } = state.history;
+  return { ...state, history: { past: [...past, step(state)], present: curve, future: [] } };
+}
+
+/** New conditions as a step of their own (undo takes them back), the curve unchanged. */
+export function commitConditions(state, constraints, fixed) {
+  return { ...commit(state, state.history.present), constraints, fixed };
 }
 
 /** The last commit replaced by `curve` (another solution of the same drag, another nudge). */
@@ -76,31 +79,38 @@ export function replaceCommit(state, curve) {
   return { ...state, history: { ...state.history, present: curve } };
 }
 
-/** One step back; the pick is dropped. */
+/** One step back, the curve with its conditions; the pick is dropped. */
 export function undo(state) {
-  const { past, present, future } = state.history;
+  const { past, future } = state.history;
   if (past.length === 0) {
     return state;
   }
-  return fitting({
+  const back = past[past.length - 1];
+  return {
     ...cleared(state),
-    history: { past: past.slice(0, -1), present: past[past.length - 1], future: [present, ...future] },
-  }, past[past.length - 1]);
+    history: { past: past.slice(0, -1), present: back.curve, future: [step(state), ...future] },
+    constraints: back.constraints,
+    fixed: back.fixed,
+  };
 }
 
-/** One step forward; the pick is dropped. */
+/** One step forward, the curve with its conditions; the pick is dropped. */
 export function redo(state) {
-  const { past, present, future } = state.history;
+  const { past, future } = state.history;
   if (future.length === 0) {
     return state;
   }
-  return fitting({
+  const forward = future[0];
+  return {
     ...cleared(state),
-    history: { past: [...past, present], present: future[0], future: future.slice(1) },
-  }, future[0]);
+    history: { past: [...past, step(state)], present: forward.curve, future: future.slice(1) },
+    constraints: forward.constraints,
+    fixed: forward.fixed,
+  };
 }
 
-/** A new curve to edit (history kept: loading is undoable); its conditions start empty. */
+/** A new curve to edit (history kept: loading is undoable, and undo gives the old curve its
+ * conditions back); its conditions start empty. */
 export function load(state, curve) {
   return { ...cleared(commit(state, curve)), family: null, constraints: [], fixed: [] };
 }

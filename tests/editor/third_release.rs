@@ -441,6 +441,52 @@ async fn pins_tangent_locks_and_fixed_poles_hold_on_the_committed_curve() {
     page.settle().await;
     assert_eq!(page.data("constraints").await, "[]");
     assert_eq!(page.data("fixed").await, "[]");
+
+    // Every change of the conditions is a step of the history: undo takes back the Clear,
+    // then the pin's removal, then the drag (its conditions stay), and redo goes forward.
+    let conditions = || async {
+        let constraints: Value = serde_json::from_str(&page.data("constraints").await).unwrap();
+        (
+            constraints.as_array().unwrap().len(),
+            page.data("fixed").await,
+        )
+    };
+    page.run("document.getElementById('canvas').focus();", vec![])
+        .await;
+    page.ctrl_z(false).await;
+    page.settle().await;
+    assert_eq!(
+        conditions().await,
+        (2, "[6]".to_owned()),
+        "the Clear undone"
+    );
+    assert_eq!(numbers(&page.curve().await), numbers(&committed));
+    page.ctrl_z(false).await;
+    page.settle().await;
+    assert_eq!(conditions().await, (3, "[6]".to_owned()), "the pin is back");
+    assert_eq!(count(&page, "#scene .pin").await, 1);
+    page.ctrl_z(false).await;
+    page.settle().await;
+    assert_eq!(
+        numbers(&page.curve().await),
+        numbers(&original),
+        "the drag undone"
+    );
+    assert_eq!(conditions().await, (3, "[6]".to_owned()));
+    page.ctrl_z(true).await;
+    page.settle().await;
+    assert_eq!(
+        numbers(&page.curve().await),
+        numbers(&committed),
+        "the drag redone"
+    );
+    page.ctrl_z(true).await;
+    page.settle().await;
+    assert_eq!(
+        conditions().await,
+        (2, "[6]".to_owned()),
+        "the pin's removal redone"
+    );
     assert_eq!(page.script_errors().await, Vec::<String>::new());
     browser.close().await;
 }
@@ -791,7 +837,11 @@ async fn a_periodic_curve_is_dragged_anywhere_even_across_its_seam_and_stays_per
         page.drag(dot, &[(dot.0 + 7, dot.1 - 8), aim]).await;
         let committed = page.curve().await;
         assert_eq!(committed["periodic"], json!(true), "t = {t}: {committed}");
-        assert_ne!(numbers(&committed), numbers(&closed), "t = {t}: the curve changed");
+        assert_ne!(
+            numbers(&committed),
+            numbers(&closed),
+            "t = {t}: the curve changed"
+        );
         assert!(closes(&app, &committed).await, "t = {t}: {committed}");
         let sent = sent_target(&page, target).await;
         assert_close(&point_of(&app, &committed, t).await, &sent, "s(t)");
