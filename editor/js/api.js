@@ -171,13 +171,12 @@ function withConditions(body, { constraints = [], fixed = [] } = {}) {
 }
 
 /** POST /v1/shape/regions: the reachable sets at `parameter` of the knot pairs (both sides)
- * and the weight pairs, for the same `keep_domain`, `methods` and fixed control points as
- * solving (so that every drawn region holds only targets solve reaches), within `tolerance`
- * of the true boundaries. */
-export function regions(curve, parameter, tolerance, { methods, fixed = [] }) {
+ * and the weight pairs, for the same `keep_domain`, `methods` and conditions as solving (so
+ * that every drawn region holds only targets solve reaches), within `tolerance` of the true
+ * boundaries. */
+export function regions(curve, parameter, tolerance, { methods, constraints = [], fixed = [] }) {
   const body = { curve, parameter, side: "both", keep_domain: true, methods, tolerance };
-  if (fixed.length > 0) body.fixed_control_points = fixed;
-  return post("/v1/shape/regions", body);
+  return post("/v1/shape/regions", withConditions(body, { constraints, fixed }));
 }
 
 /**

@@ -21,20 +21,19 @@ const MOST_TEETH = 2000;
 const TEETH_PER_SPAN = 8;
 
 /** The methods whose reachable sets the page draws for `curve` in `state`: the ticked knot
- * pairs and weights that can edit it, on a planar curve, and none while constraints hold
- * (the regions endpoint does not take them, so a drawn region might hold targets that a
- * constraint excludes; the solver decides then). */
+ * pairs and weights that can edit it, on a planar curve. */
 export function regionMethods(curve, state) {
-  if (state.constraints.length > 0 || geometry.dimension(curve) !== 2) return [];
+  if (geometry.dimension(curve) !== 2) return [];
   return geometry.usableMethods(curve, state.methods).filter((method) => method === "knots" || method === "weights");
 }
 
-/** The regions answer at `parameter` of `curve` for the methods and fixed control points of
- * `state`, drawn within REGION_PIXELS at its frame; null when no region is drawn. */
+/** The regions answer at `parameter` of `curve` for the methods and conditions of `state`
+ * (under constraints only the pairs whose edits surely keep them), drawn within
+ * REGION_PIXELS at its frame; null when no region is drawn. */
 export function regionsAt(curve, parameter, state) {
   const methods = regionMethods(curve, state);
   if (methods.length === 0) return Promise.resolve(null);
-  return api.regions(curve, parameter, REGION_PIXELS / state.view.frame.scale, { methods, fixed: state.fixed });
+  return api.regions(curve, parameter, REGION_PIXELS / state.view.frame.scale, { methods, ...model.conditions(state) });
 }
 
 /** The marks of `state`'s constraints on `curve` ({ point, tangent } each, same order) and

@@ -21,7 +21,7 @@ function withConditions(state, constraints, fixed, message) {
 }
 
 /** Draws the curve again with the new conditions (their marks, and the regions at the pick,
- * which follow the fixed control points and are not drawn under constraints). */
+ * which follow them). */
 function redrawn(next) {
   store.nextGeneration();
   store.set(next);

@@ -179,7 +179,7 @@ function drawConditions(state, elements) {
   if (pins > 0) parts.push(counted(pins, "pin"));
   if (tangents > 0) parts.push(counted(tangents, "tangent lock"));
   if (state.fixed.length > 0) parts.push(`${counted(state.fixed.length, "fixed control point")} (${state.fixed.join(", ")})`);
-  const note = state.constraints.length > 0 ? "; regions are not drawn under pins and tangent locks (the solver decides)" : "";
+  const note = state.constraints.length > 0 ? "; only the regions whose edits keep them are drawn" : "";
   elements.conditionsSummary.textContent = parts.length > 0 ? `${parts.join(", ")}${note}.` : "Nothing pinned.";
   elements.clearConditions.disabled = parts.length === 0;
 }

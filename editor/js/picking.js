@@ -15,10 +15,10 @@ import { PICK_RADIUS } from "./view.js";
  * drawing tolerances (its polygons are not drawn). */
 const REGION_PROBE_TOLERANCE = 10;
 
-/** Whether a knot-pair region is at `t` of `curve`: from `regions` when it was asked with
- * the knots method, else by asking (regions are not drawn under constraints). */
+/** Whether a knot-pair region is at `t` of `curve` (whatever the constraints rule out): from
+ * `regions` when it was asked with the knots method and no constraints, else by asking. */
 async function knotRegionAt(curve, t, regions, state) {
-  if (regions?.ok && regionMethods(curve, state).includes("knots")) return geometry.hasKnotRegion(regions.value);
+  if (regions?.ok && regionMethods(curve, state).includes("knots") && state.constraints.length === 0) return geometry.hasKnotRegion(regions.value);
   const probe = await api.regions(curve, t, REGION_PROBE_TOLERANCE * geometry.drawingTolerance(curve), { methods: ["knots"] });
   return probe.ok && geometry.hasKnotRegion(probe.value);
 }

@@ -312,6 +312,33 @@ impl ConstraintSet {
         self.conditions.iter().find(|c| c.index == index)
     }
 
+    /// Whether every condition surely holds on any edit of `curve` that changes it only on
+    /// `affected = [lo, hi]` (a conservative test, for drawing only what solving reaches):
+    /// each holds on `curve` itself, and lies where such an edit leaves the curve alone.
+    /// Outside `[lo, hi]` the edit is the old curve. At `lo` or `hi` so is its point where the
+    /// curve is continuous there (an end of the domain, or a knot of multiplicity at most the
+    /// degree), but not necessarily its derivatives; inside, anything may change.
+    pub fn surely_kept_outside(&self, curve: &Curve, affected: (f64, f64)) -> bool {
+        if self.clash.is_some()
+            || self
+                .check_values(|condition| Some(condition.current))
+                .is_err()
+        {
+            return false;
+        }
+        let (lo, hi) = affected;
+        let (start, end) = curve.domain();
+        let continuous_at = |u: f64| {
+            u == start
+                || u == end
+                || curve.knots().iter().filter(|&&knot| knot == u).count() <= curve.degree()
+        };
+        self.conditions.iter().all(|condition| {
+            let u = condition.parameter;
+            u < lo || u > hi || ((u == lo || u == hi) && condition.order == 0 && continuous_at(u))
+        })
+    }
+
     /// Checks every condition on `curve` (a new curve of the edit), evaluated by the spline
     /// core: the first condition it breaks, if any.
     pub fn check(&self, curve: &Curve) -> Result<(), Breach> {

@@ -64,8 +64,30 @@ impl EditMethod for KnotPairs {
         }
     }
 
+    /// The regions of the pairs whose edits surely keep the constraints: a knot-pair edit
+    /// changes the moved knot and the pair's two, so the curve only on
+    /// `[u_{qmin-3}, u_{qmax+3}]` (the whole domain when one of them is an end of it).
     fn reachable(&self, edit: &EditContext, options: PolygonOptions) -> Reachable {
-        Reachable::KnotRegions(region_polygons(&edit.query, options).unwrap_or_default())
+        let mut candidates = region_polygons(&edit.query, options).unwrap_or_default();
+        if !edit.constraints.is_empty() {
+            let curve = edit.query.curve;
+            let (knots, p) = (curve.knots(), curve.degree());
+            let n = curve.control_points().len() - 1;
+            for entry in &mut candidates {
+                let moved = entry.candidate.moved_knot;
+                entry.regions.retain(|region| {
+                    let qmin = moved.min(region.knots[0]).min(region.knots[1]);
+                    let qmax = moved.max(region.knots[0]).max(region.knots[1]);
+                    let affected = if qmin <= p || qmax > n {
+                        (f64::NEG_INFINITY, f64::INFINITY)
+                    } else {
+                        (knots[(qmin - p).max(p)], knots[(qmax + p).min(n + 1)])
+                    };
+                    edit.constraints.surely_kept_outside(curve, affected)
+                });
+            }
+        }
+        Reachable::KnotRegions(candidates)
     }
 
     fn nearest(&self, edit: &EditContext, target: Point) -> Option<MethodNearest> {

@@ -388,10 +388,19 @@ impl EditMethod for Weights {
         }
     }
 
+    /// The quadrilaterals of the usable pairs whose edits surely keep the constraints (the
+    /// weights of poles `k < l` change the curve only on `[u_k, u_{l+p+1}]`).
     fn reachable(&self, edit: &EditContext, _options: PolygonOptions) -> Reachable {
+        let curve = edit.query.curve;
         Reachable::WeightRegions(
             usable_pairs(edit)
                 .into_iter()
+                .filter(|pair| {
+                    let mut poles = pair.poles;
+                    poles.sort_unstable();
+                    let affected = affected_domain_of_poles(curve, &poles);
+                    edit.constraints.surely_kept_outside(curve, affected)
+                })
                 .map(|pair| {
                     let corners = pair.corners();
                     let polygon: Vec<Point> = corners

@@ -11,7 +11,7 @@ use crate::reference::{ReferenceCurve, cubic_2d, distance};
 
 /// `s^(order)(u)` of the reference curve by finite differences (central inside the domain,
 /// one-sided at its ends); accurate to about `1e-6` of the curve's scale.
-fn derivative(curve: &ReferenceCurve, u: f64, order: usize) -> Vec<f64> {
+pub(crate) fn derivative(curve: &ReferenceCurve, u: f64, order: usize) -> Vec<f64> {
     let (lo, hi) = curve.domain();
     let h = 1e-4 * (hi - lo);
     let at = |v: f64| curve.point(v);
@@ -53,7 +53,7 @@ fn norm(v: &[f64]) -> f64 {
 }
 
 /// The new curve of a solution: knots, control points or weights replaced.
-fn solution_curve(curve: &ReferenceCurve, solution: &Value) -> ReferenceCurve {
+pub(crate) fn solution_curve(curve: &ReferenceCurve, solution: &Value) -> ReferenceCurve {
     let mut new = curve.clone();
     match solution["method"].as_str().unwrap() {
         "knots" => {
@@ -498,7 +498,7 @@ async fn every_malformed_constraint_is_a_422_with_its_pointer() {
 }
 
 /// Point in polygon (even-odd rule), in x–y.
-fn inside(polygon: &[Vec<f64>], point: [f64; 2]) -> bool {
+pub(crate) fn inside(polygon: &[Vec<f64>], point: [f64; 2]) -> bool {
     let mut inside = false;
     for edge in polygon.windows(2) {
         let (a, b) = (&edge[0], &edge[1]);
@@ -580,7 +580,7 @@ async fn drawn_regions_hold_only_what_solve_reaches_with_the_same_request() {
     }
 }
 
-fn segment_distance(p: [f64; 2], a: &[f64], b: &[f64]) -> f64 {
+pub(crate) fn segment_distance(p: [f64; 2], a: &[f64], b: &[f64]) -> f64 {
     let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
     let length = dx * dx + dy * dy;
     let s = if length == 0.0 {

@@ -25,5 +25,6 @@ mod pictures;
 mod pieces;
 mod real_curves;
 mod reference;
+mod regions_constraints;
 mod shape;
 mod shutdown;

@@ -39,21 +39,36 @@ async fn drawn_regions(page: &Page<'_>) -> Vec<(String, String, String, Polygon)
         .collect()
 }
 
-/// The page's request (methods as ticked, the domain kept, its fixed control points) for
-/// `target`: whether it has a solution of the drawn region's own family (not a nearest one).
+/// The page's conditions: its constraints (pins, tangent locks) and fixed control points.
+struct Conditions<'a> {
+    constraints: Value,
+    fixed: &'a [usize],
+}
+
+/// No pins, tangent locks or fixed control points.
+const NONE: Conditions<'static> = Conditions {
+    constraints: Value::Null,
+    fixed: &[],
+};
+
+/// The page's request (methods as ticked, the domain kept, its conditions) for `target`:
+/// whether it has a solution of the drawn region's own family (not a nearest one).
 async fn solved_by_region(
     app: &TestApp,
     curve: &Value,
     t: f64,
     target: [f64; 2],
     methods: &[&str],
-    fixed: &[usize],
+    conditions: &Conditions<'_>,
     (side, region, poles): (&str, &str, &str),
 ) -> bool {
     let mut request = json!({"curve": curve, "parameter": t, "target": target, "side": "both",
                              "keep_domain": true, "methods": methods});
-    if !fixed.is_empty() {
-        request["fixed_control_points"] = json!(fixed);
+    if !conditions.fixed.is_empty() {
+        request["fixed_control_points"] = json!(conditions.fixed);
+    }
+    if !conditions.constraints.is_null() {
+        request["constraints"] = conditions.constraints.clone();
     }
     let (status, body) = app.post_json("/v1/shape/solve", &request).await;
     assert_eq!(status, 200, "{body}");
@@ -77,7 +92,7 @@ async fn check_drawn_regions(
     app: &TestApp,
     t: f64,
     methods: &[&str],
-    fixed: &[usize],
+    conditions: &Conditions<'_>,
 ) -> (usize, usize) {
     let pixel = 1.0 / page.frame().await["scale"].as_f64().unwrap();
     let mut sampled = (0, 0);
@@ -99,7 +114,7 @@ async fn check_drawn_regions(
                     t,
                     target,
                     methods,
-                    fixed,
+                    conditions,
                     (&side, &region, &poles)
                 )
                 .await,
@@ -129,7 +144,7 @@ async fn drawn_knot_and_weight_regions_are_solved_by_the_pages_own_request() {
     page.settle().await;
     let all = ["knots", "control_points", "weights"];
     let (t, _) = pick(&page, &app, &sample(), 0.42).await;
-    let (knots, weights) = check_drawn_regions(&page, &app, t, &all, &[]).await;
+    let (knots, weights) = check_drawn_regions(&page, &app, t, &all, &NONE).await;
     assert!(
         knots >= 3 && weights >= 4,
         "{knots} knot, {weights} weight regions sampled"
@@ -155,8 +170,40 @@ async fn drawn_knot_and_weight_regions_are_solved_by_the_pages_own_request() {
         .map(|r| r.2)
         .collect();
     assert_eq!(pairs, ["2,3", "2,5", "3,5"], "pairs without pole 4");
-    let (_, weights) = check_drawn_regions(&page, &app, t, &all, &[4]).await;
+    let fixed = Conditions {
+        constraints: Value::Null,
+        fixed: &[4],
+    };
+    let (_, weights) = check_drawn_regions(&page, &app, t, &all, &fixed).await;
     assert!(weights >= 2, "{weights} weight regions sampled");
+
+    // A pin at u = 0.8: every knot-pair edit at t and the pairs with pole 4 or 5 change the
+    // curve there (pole 5 acts up to u_9 = 1), so only the pair 2, 3 (up to u_7 = 0.75) is
+    // drawn, and solved with the pin in the request.
+    let at = page.to_screen(point_at(&app, &sample(), 0.8).await).await;
+    page.click_at(at).await;
+    page.settle().await;
+    let constraints: Value = serde_json::from_str(&page.data("constraints").await).unwrap();
+    assert_eq!(
+        constraints.as_array().map(Vec::len),
+        Some(1),
+        "{constraints}: {}",
+        page.describe().await
+    );
+    let pairs: Vec<(String, String)> = drawn_regions(&page)
+        .await
+        .into_iter()
+        .map(|r| (r.1, r.2))
+        .collect();
+    assert_eq!(pairs, [("weights".to_owned(), "2,3".to_owned())]);
+    let pinned = Conditions {
+        constraints,
+        fixed: &[4],
+    };
+    let (_, weights) = check_drawn_regions(&page, &app, t, &all, &pinned).await;
+    assert_eq!(weights, 1);
+    page.click_id("clear-conditions").await;
+    page.settle().await;
 
     // Weights off: only the knot pairs' regions.
     page.click_id("method-weights").await;
@@ -370,11 +417,13 @@ async fn pins_tangent_locks_and_fixed_poles_hold_on_the_committed_curve() {
     }
     // A drag of the curve point at 0.42 solves the whole curve under the conditions.
     let (t, dot) = pick(&page, &app, &original, 0.42).await;
-    assert_eq!(
-        count(&page, "#scene polygon.region").await,
-        0,
-        "no regions under constraints"
-    );
+    // Only the regions whose edits leave the conditions alone are drawn, and solve reaches
+    // them under the same conditions.
+    let conditions = Conditions {
+        constraints: constraints.clone(),
+        fixed: &[6],
+    };
+    check_drawn_regions(&page, &app, t, &["knots", "control_points"], &conditions).await;
     // Into a knot-pair region (as drawn without conditions): the conditions rule its
     // solution out, the control-point move under them is committed.
     let aim = super::steps::pixel_inside_a_region(&page, &app, &original, t, dot).await;

@@ -252,7 +252,7 @@ fn regions_request(
     };
     let conditions = parsed.conditions(
         request.parameter,
-        None,
+        request.constraints.as_deref(),
         request.fixed_control_points.as_deref(),
     )?;
     let query = parsed.query(request.parameter, request.side, request.keep_domain);

@@ -233,6 +233,13 @@ pub struct RegionsRequest {
     #[serde(default)]
     #[schema(value_type = Option<Vec<Method>>, example = json!(["knots", "weights"]))]
     pub methods: Option<Vec<String>>,
+    /// As in solve, checked the same way. Only the regions of the pairs (knot or weight)
+    /// whose edits surely keep every constraint are drawn: the edit leaves the curve alone
+    /// where the constraint is (a point at an end of the changed part, or outside it; a
+    /// derivative outside it) and the constraint holds on the current curve.
+    #[serde(default)]
+    #[schema(example = json!([{"parameter": 0.0, "order": 0}]))]
+    pub constraints: Option<Vec<ConstraintBody>>,
     /// As in solve: the weight pairs of these control points are not drawn.
     #[serde(default)]
     #[schema(example = json!([0]))]
