@@ -20,6 +20,7 @@ import { bind } from "./interaction.js";
 import { buildPanel, drawPanel } from "./panel.js";
 import { drawScene } from "./view.js";
 import { drawStrip } from "./strip.js";
+import { setAttribute } from "./render.js";
 import { SAMPLE_CUBIC, SINGLE_BEZIER } from "./sample.js";
 
 const IDS = {
@@ -62,9 +63,9 @@ function fitView() {
  * drawing that followed each of those sizes would lay all its marks out again every time
  * (2–3 ms per move on a 300-pole curve, measured by tests/editor/timing.rs). */
 function sizeCanvas(size) {
-  for (const [name, value] of [["width", size.width], ["height", size.height], ["viewBox", `0 0 ${size.width} ${size.height}`]]) {
-    if (elements.canvas.getAttribute(name) !== String(value)) elements.canvas.setAttribute(name, String(value));
-  }
+  setAttribute(elements.canvas, "width", String(size.width));
+  setAttribute(elements.canvas, "height", String(size.height));
+  setAttribute(elements.canvas, "viewBox", `0 0 ${size.width} ${size.height}`);
 }
 
 function resize(size) {
