@@ -12,6 +12,7 @@ mod helpers;
 mod editor {
     pub mod api_key;
     pub mod browser;
+    pub mod curve_tools;
     pub mod drag;
     pub mod gestures;
     pub mod layout;

@@ -1,11 +1,13 @@
 //! Conditions that a shape edit keeps (docs/method.md §19): pins and prescribed values of the
 //! curve's point and first two derivatives at chosen parameters, kept tangent directions, and
-//! fixed control points. Validated once into a [`ConstraintSet`] and [`FixedPoles`], so every
-//! method sees the same checked list; a method's new curve is checked against the set by
-//! evaluating it ([`ConstraintSet::check`]).
+//! fixed control points. Validated once into a [`ConstraintSet`] and [`FixedPoles`] (in
+//! fixed_poles.rs), so every method sees the same checked list; a method's new curve is
+//! checked against the set by evaluating it ([`ConstraintSet::check`]).
 
 use crate::spline::vector::{Point, dot, norm, scale, sub};
 use crate::spline::{Curve, MAX_BASIS_ORDER};
+
+pub use super::fixed_poles::{FixedPoleError, FixedPoles};
 
 /// How closely a returned solution meets every condition, relative to the curve's size
 /// ([`edit_size`]): a condition of order `r` at `u` holds when
@@ -543,84 +545,3 @@ fn compatible(first: Requirement, second: Requirement, tolerance: f64) -> bool {
 
 /// Two unit directions closer than this are the same direction.
 const DIRECTION_MATCH: f64 = 1e-12;
-
-/// Why a list of fixed control points is malformed.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-pub enum FixedPoleError {
-    /// No such control point.
-    #[error("control point {index} does not exist: the curve has {count} (indices 0 to {})", count - 1)]
-    OutOfRange { index: usize, count: usize },
-    /// Listed twice.
-    #[error("control point {index} is listed twice (first at fixed_control_points[{first}])")]
-    Repeated { index: usize, first: usize },
-}
-
-/// The control points that no solution may move (nor change the weight of).
-#[derive(Debug, Clone, PartialEq)]
-pub struct FixedPoles {
-    fixed: Vec<bool>,
-}
-
-impl FixedPoles {
-    /// None fixed, for a curve with `count` control points.
-    pub fn none(count: usize) -> FixedPoles {
-        FixedPoles {
-            fixed: vec![false; count],
-        }
-    }
-
-    /// Validates the indices for a curve with `count` control points: each in range, none
-    /// repeated (every malformed entry reported with its position in the list).
-    pub fn new(
-        count: usize,
-        indices: &[usize],
-    ) -> Result<FixedPoles, Vec<(usize, FixedPoleError)>> {
-        let mut fixed = vec![false; count];
-        let mut issues = Vec::new();
-        for (position, &index) in indices.iter().enumerate() {
-            if index >= count {
-                issues.push((position, FixedPoleError::OutOfRange { index, count }));
-            } else if fixed[index] {
-                let first = indices[..position]
-                    .iter()
-                    .position(|&i| i == index)
-                    .unwrap_or(0);
-                issues.push((position, FixedPoleError::Repeated { index, first }));
-            } else {
-                fixed[index] = true;
-            }
-        }
-        if issues.is_empty() {
-            Ok(FixedPoles { fixed })
-        } else {
-            Err(issues)
-        }
-    }
-
-    /// For a curve with `count` control points, those for which `fixed(index)` holds.
-    pub fn from_fn(count: usize, fixed: impl Fn(usize) -> bool) -> FixedPoles {
-        FixedPoles {
-            fixed: (0..count).map(fixed).collect(),
-        }
-    }
-
-    /// Whether control point `index` is fixed.
-    pub fn is_fixed(&self, index: usize) -> bool {
-        self.fixed.get(index).copied().unwrap_or(false)
-    }
-
-    /// The number of control points.
-    pub fn len(&self) -> usize {
-        self.fixed.len()
-    }
-
-    /// Whether the curve has no control points (never, for a valid curve).
-    pub fn is_empty(&self) -> bool {
-        self.fixed.is_empty()
-    }
-
-    /// Whether every control point is fixed.
-    pub fn all_fixed(&self) -> bool {
-        self.fixed.iter().all(|&f| f)
-    }
-}
