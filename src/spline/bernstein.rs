@@ -104,6 +104,102 @@ pub(crate) fn value_and_slope(coefficients: &[f64], s: f64) -> (f64, f64) {
     (value * power * base, if mirrored { -slope } else { slope })
 }
 
+/// `out += a * a` in the scaled Bernstein basis ([`convolve`] of `a` with itself), with each
+/// product `a_i a_j` formed once: `out_k += Σ_{i+j=k} a_i a_j`.
+#[inline(always)]
+pub(crate) fn add_square(a: &[f64], out: &mut [f64]) {
+    debug_assert_eq!(out.len(), 2 * a.len() - 1);
+    for (i, &a_i) in a.iter().enumerate() {
+        out[2 * i] += a_i * a_i;
+        let twice = 2.0 * a_i;
+        for (product, &a_j) in out[2 * i + 1..].iter_mut().zip(&a[i + 1..]) {
+            *product += twice * a_j;
+        }
+    }
+}
+
+/// `1 / C(n, k)` for `n <= MAX_RATIO_DEGREE`: [`unscale`] by products instead of quotients.
+pub(crate) static INVERSE_BINOMIAL: [[f64; MAX_RATIO_DEGREE + 1]; MAX_RATIO_DEGREE + 1] =
+    inverse_pascal_triangle();
+
+const fn inverse_pascal_triangle() -> [[f64; MAX_RATIO_DEGREE + 1]; MAX_RATIO_DEGREE + 1] {
+    let mut table = [[0.0; MAX_RATIO_DEGREE + 1]; MAX_RATIO_DEGREE + 1];
+    let mut n = 0;
+    while n <= MAX_RATIO_DEGREE {
+        let mut k = 0;
+        while k <= n {
+            table[n][k] = 1.0 / BINOMIAL[n][k];
+            k += 1;
+        }
+        n += 1;
+    }
+    table
+}
+
+/// The value at `s ∈ [0, 1)` of Bernstein polynomials in `L` lanes (`coefficients[k]` holds
+/// their `k`-th coefficients, the first `len`; degree `n = len - 1 >= 2`) and their first
+/// and second derivatives there, in `O(n)`: with `r = s / (1 - s)`, by Horner's scheme,
+/// `f = (1 - s)^n Σ C(n, k) b_k r^k`, `f' = n (1 - s)^(n-1) Σ C(n-1, k) Δb_k r^k` and
+/// `f'' = n (n - 1) (1 - s)^(n-2) Σ C(n-2, k) Δ²b_k r^k`.
+///
+/// As well conditioned as de Casteljau's evaluation for `s <= 1/2` (`r <= 1`); beyond,
+/// evaluate the mirrored polynomials (coefficients reversed) at `1 - s`, as
+/// [`value_and_slope`] does.
+#[inline(always)]
+pub(crate) fn values_and_derivatives<const L: usize, const LEN: usize>(
+    coefficients: &[[f64; L]; LEN],
+    len: usize,
+    s: f64,
+) -> [[f64; L]; 3] {
+    debug_assert!((3..=LEN).contains(&len));
+    // With `len` known to be `LEN`, the loops have fixed trip counts and unroll.
+    if len == LEN {
+        horner_derivatives(coefficients, LEN - 1, s)
+    } else {
+        horner_derivatives(coefficients, len - 1, s)
+    }
+}
+
+/// [`values_and_derivatives`] of degree `n`.
+#[inline(always)]
+fn horner_derivatives<const L: usize, const LEN: usize>(
+    b: &[[f64; L]; LEN],
+    n: usize,
+    s: f64,
+) -> [[f64; L]; 3] {
+    let (ratio, base) = (s / (1.0 - s), 1.0 - s);
+    let (mut value, mut slope, mut curvature) = (b[n], [0.0; L], [0.0; L]);
+    for l in 0..L {
+        slope[l] = b[n][l] - b[n - 1][l];
+        curvature[l] = slope[l] - (b[n - 1][l] - b[n - 2][l]);
+        value[l] = value[l] * ratio + BINOMIAL[n][n - 1] * b[n - 1][l];
+    }
+    for k in (0..n - 1).rev() {
+        for l in 0..L {
+            value[l] = value[l] * ratio + BINOMIAL[n][k] * b[k][l];
+            slope[l] = slope[l] * ratio + BINOMIAL[n - 1][k] * (b[k + 1][l] - b[k][l]);
+        }
+    }
+    for k in (0..n - 2).rev() {
+        for l in 0..L {
+            let second = b[k + 2][l] - 2.0 * b[k + 1][l] + b[k][l];
+            curvature[l] = curvature[l] * ratio + BINOMIAL[n - 2][k] * second;
+        }
+    }
+    let mut power = 1.0;
+    for _ in 2..n {
+        power *= base;
+    }
+    let n = n as f64;
+    let (value_scale, slope_scale, curvature_scale) =
+        (power * base * base, n * power * base, n * (n - 1.0) * power);
+    [
+        value.map(|v| v * value_scale),
+        slope.map(|v| v * slope_scale),
+        curvature.map(|v| v * curvature_scale),
+    ]
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
