@@ -127,7 +127,11 @@ struct Interval<const L: usize, const LEN: usize> {
 /// `N / D` of one coefficient's lanes (`D = 1` for one lane).
 #[inline(always)]
 fn ratio<const L: usize>(lanes: [f64; L]) -> f64 {
-    if L == 2 { lanes[0] / lanes[L - 1] } else { lanes[0] }
+    if L == 2 {
+        lanes[0] / lanes[L - 1]
+    } else {
+        lanes[0]
+    }
 }
 
 /// `N - bound D` of one coefficient's lanes.
@@ -265,7 +269,12 @@ fn maximum_squared_gap<const POINTS: usize, const L: usize, const LEN: usize>(ga
                 sum[l] += binomial * lanes[l];
             }
         }
-        ratio(sum) * if L == 2 { 1.0 } else { 0.5f64.powi(degree as i32) }
+        ratio(sum)
+            * if L == 2 {
+                1.0
+            } else {
+                0.5f64.powi(degree as i32)
+            }
     };
     let mut best = stack
         .iter()
@@ -353,10 +362,7 @@ fn estimate_maximum<const L: usize, const LEN: usize>(
     let excesses = &excesses[..len];
     let rising = excesses.windows(2).take_while(|w| w[1] > w[0]).count();
     let largest = rising;
-    if largest == 0
-        || largest == degree
-        || excesses[largest..].windows(2).any(|w| w[1] > w[0])
-    {
+    if largest == 0 || largest == degree || excesses[largest..].windows(2).any(|w| w[1] > w[0]) {
         return None;
     }
     // Start where the control polygon of the derivative crosses zero.
