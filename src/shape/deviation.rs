@@ -34,7 +34,8 @@ const MAX_DEPTH: u32 = 48;
 /// Splits per call at most, which bounds the time whatever the input.
 const MAX_SPLITS: usize = 4096;
 
-/// Gaps below this fraction of the control net's size count as zero (rounding noise).
+/// Gaps below this fraction of the size of the control points acting on the compared
+/// interval (their largest coordinate) count as zero (rounding noise).
 const ZERO_GAP: f64 = 1e-13;
 
 /// Largest distance `|s_old(u) - s_new(u)|` for `u` in `interval` (outside it the two curves
@@ -86,20 +87,26 @@ fn max_deviation_between(
         lo,
         hi,
     };
-    // Cubics (every shape request) get copies compiled for their exact sizes: 4 Bézier points,
-    // 7 coefficients (13 when rational, in two lanes: N and D).
+    // Cubics (every shape request) get copies compiled for their exact sizes: degree 3, 4 Bézier
+    // points, 7 coefficients (13 when rational, in two lanes: N and D).
     let squared = match (p, curve.is_rational() || moved.is_rational()) {
-        (3, false) => maximum_squared_gap::<4, 1, 7>(Gap { p: 3, ..gap }),
-        (3, true) => maximum_squared_gap::<4, 2, 13>(Gap { p: 3, ..gap }),
-        (_, false) => maximum_squared_gap::<{ MAX_DEGREE + 1 }, 1, { 2 * MAX_DEGREE + 1 }>(gap),
-        (_, true) => maximum_squared_gap::<{ MAX_DEGREE + 1 }, 2, { MAX_RATIO_DEGREE + 1 }>(gap),
+        (3, false) => maximum_squared_gap::<3, 4, 1, 7>(gap),
+        (3, true) => maximum_squared_gap::<3, 4, 2, 13>(gap),
+        (_, false) => maximum_squared_gap::<0, { MAX_DEGREE + 1 }, 1, { 2 * MAX_DEGREE + 1 }>(gap),
+        (_, true) => maximum_squared_gap::<0, { MAX_DEGREE + 1 }, 2, { MAX_RATIO_DEGREE + 1 }>(gap),
     };
     squared.sqrt()
 }
 
+/// The curves' degree: `P`, a literal for cubics (so that the loops over the coefficients get
+/// fixed trip counts), or `gap.p` when `P = 0`.
+#[inline(always)]
+fn degree<const P: usize>(gap: &Gap) -> usize {
+    if P > 0 { P } else { gap.p }
+}
+
 /// What the search compares: `curve` with the control net of `moved` over `new_knots`, on
-/// `[lo, hi]`, both of degree `p` (a literal for cubics, so that the loops over the
-/// coefficients get fixed trip counts) in `coordinates` coordinates.
+/// `[lo, hi]`, both of degree `p`, in `coordinates` coordinates.
 #[derive(Clone, Copy)]
 struct Gap<'a> {
     curve: &'a Curve,
@@ -149,7 +156,7 @@ fn excess<const L: usize>(lanes: [f64; L], bound: f64) -> f64 {
 /// a weight or control-point edit; pieces where both nets agree, without gap, are left out),
 /// else one between consecutive values of either vector.
 #[inline(always)]
-fn pieces<const POINTS: usize, const L: usize, const LEN: usize>(
+fn pieces<const P: usize, const POINTS: usize, const L: usize, const LEN: usize>(
     gap: &Gap,
     stack: &mut Vec<Interval<L, LEN>>,
 ) {
@@ -157,11 +164,11 @@ fn pieces<const POINTS: usize, const L: usize, const LEN: usize>(
         curve,
         moved,
         new_knots,
-        p,
         lo,
         hi,
         ..
     } = *gap;
+    let p = degree::<P>(gap);
     let old_knots = curve.knots();
     if old_knots == new_knots {
         // The span holding `start`: the last knot `<= start` (knots are sorted, `start` lies
@@ -179,7 +186,7 @@ fn pieces<const POINTS: usize, const L: usize, const LEN: usize>(
                     points
                 };
                 stack.push(if L == 2 {
-                    rational_gap_on_piece(gap, piece(old), piece(new))
+                    rational_gap_on_piece::<P, POINTS, L, LEN>(gap, piece(old), piece(new))
                 } else {
                     // Blossoming is linear in the net: the gap's points are those of the
                     // difference of the nets.
@@ -187,7 +194,7 @@ fn pieces<const POINTS: usize, const L: usize, const LEN: usize>(
                     for (d, (o, n)) in difference.iter_mut().zip(old.iter().zip(new)) {
                         *d = std::array::from_fn(|c| o[c] - n[c]);
                     }
-                    polynomial_gap_on_piece(gap, piece(&difference[..=p]))
+                    polynomial_gap_on_piece::<P, POINTS, L, LEN>(gap, piece(&difference[..=p]))
                 });
             }
             if end >= hi {
@@ -224,11 +231,11 @@ fn pieces<const POINTS: usize, const L: usize, const LEN: usize>(
         let old = old_pieces.next(start, end, p);
         let new = new_pieces.next(start, end, p);
         stack.push(if L == 2 {
-            rational_gap_on_piece(gap, old, new)
+            rational_gap_on_piece::<P, POINTS, L, LEN>(gap, old, new)
         } else {
             let difference: [[f64; 4]; POINTS] =
                 std::array::from_fn(|i| std::array::from_fn(|c| old[i][c] - new[i][c]));
-            polynomial_gap_on_piece(gap, difference)
+            polynomial_gap_on_piece::<P, POINTS, L, LEN>(gap, difference)
         });
         if end >= hi {
             break;
@@ -241,21 +248,26 @@ fn pieces<const POINTS: usize, const L: usize, const LEN: usize>(
 /// polynomial curves (`N`), 2 for rational ones (`N` and `D`); `LEN >=` the number of
 /// coefficients (`2p + 1`, or `4p + 1` when rational).
 #[inline(always)]
-fn maximum_squared_gap<const POINTS: usize, const L: usize, const LEN: usize>(gap: Gap) -> f64 {
-    let p = gap.p;
+fn maximum_squared_gap<const P: usize, const POINTS: usize, const L: usize, const LEN: usize>(
+    gap: Gap,
+) -> f64 {
+    let p = degree::<P>(&gap);
     debug_assert_eq!(p, gap.curve.degree());
     let len = if L == 2 { 4 * p + 1 } else { 2 * p + 1 };
     debug_assert!(p < POINTS && len <= LEN);
     let mut stack: Vec<Interval<L, LEN>> =
         Vec::with_capacity(2 * (gap.curve.knots().len() + p) + MAX_DEPTH as usize);
-    pieces::<POINTS, L, LEN>(&gap, &mut stack);
+    pieces::<P, POINTS, L, LEN>(&gap, &mut stack);
 
-    // Squared gaps at most this count as zero (rounding noise).
-    let size = gap
-        .curve
-        .control_points()
+    // Squared gaps at most this count as zero (rounding noise): relative to the largest
+    // coordinate of the control points acting on [lo, hi] (the spans of lo and of hi's left
+    // limit, and all between).
+    let knots = gap.curve.knots();
+    let first = knots.partition_point(|&u| u <= gap.lo) - 1 - p;
+    let last = knots.partition_point(|&u| u < gap.hi) - 1;
+    let size = gap.curve.control_points()[first..=last]
         .iter()
-        .flatten()
+        .flat_map(|point| &point[..gap.coordinates])
         .fold(0.0, |size: f64, coordinate| size.max(coordinate.abs()));
     let zero = (ZERO_GAP * size) * (ZERO_GAP * size);
     // The pieces' end values and midpoint values start the search: a start near the largest
@@ -516,11 +528,16 @@ fn split_bezier(points: &mut [[f64; 4]], s: f64, left: &mut [[f64; 4]]) {
 /// Products are formed in the scaled basis `s^k (1 - s)^(d-k)`, whose coefficients are
 /// `C(d, k)` times the Bernstein ones: there a product is a plain convolution.
 #[inline(always)]
-fn polynomial_gap_on_piece<const POINTS: usize, const L: usize, const LEN: usize>(
+fn polynomial_gap_on_piece<
+    const P: usize,
+    const POINTS: usize,
+    const L: usize,
+    const LEN: usize,
+>(
     gap: &Gap,
     mut points: [[f64; 4]; POINTS],
 ) -> Interval<L, LEN> {
-    let p = gap.p;
+    let p = degree::<P>(gap);
     scale_points(&mut points, p);
     let mut numerator = [0.0; LEN];
     for c in 0..gap.coordinates {
@@ -534,12 +551,12 @@ fn polynomial_gap_on_piece<const POINTS: usize, const L: usize, const LEN: usize
 /// and the new one `new` (rational curves): `N = |X_old W_new - X_new W_old|²` and
 /// `D = (W_old W_new)²`, products in the scaled basis as in [`polynomial_gap_on_piece`].
 #[inline(always)]
-fn rational_gap_on_piece<const POINTS: usize, const L: usize, const LEN: usize>(
+fn rational_gap_on_piece<const P: usize, const POINTS: usize, const L: usize, const LEN: usize>(
     gap: &Gap,
     mut old: [[f64; 4]; POINTS],
     mut new: [[f64; 4]; POINTS],
 ) -> Interval<L, LEN> {
-    let p = gap.p;
+    let p = degree::<P>(gap);
     scale_points(&mut old, p);
     scale_points(&mut new, p);
     let column = |points: &[[f64; 4]; POINTS], c: usize| -> [f64; POINTS] {
