@@ -340,7 +340,7 @@ const NEWTON_STEPS: usize = 6;
 
 /// A Newton step this small (in the part's parameter) ends the iteration: the next would be
 /// about its square.
-const NEWTON_CONVERGED: f64 = 1e-7;
+const NEWTON_CONVERGED: f64 = 1e-5;
 
 /// Estimates too close to an end of the part are left to halving.
 const ESTIMATE_MARGIN: f64 = 1e-6;

@@ -251,4 +251,58 @@ mod tests {
         let (value, slope) = value_and_slope(&[1.0, 3.0], 0.25);
         assert!((value - 1.5).abs() < 1e-15 && (slope - 2.0).abs() < 1e-15);
     }
+
+    #[test]
+    fn values_and_second_derivatives_match_de_casteljau_of_the_differences() {
+        // Two lanes of degree 6; the derivatives' own Bernstein coefficients are
+        // n Δb_k and n (n - 1) Δ²b_k, evaluated by de Casteljau.
+        let first = [1.5, -2.0, 0.25, 3.0, -1.0, 0.5, 2.0];
+        let second = [0.3, 0.9, 1.7, 1.2, 0.8, 1.1, 0.6];
+        let lanes: [[f64; 2]; 7] = std::array::from_fn(|k| [first[k], second[k]]);
+        let n = 6.0;
+        for (lane, coefficients) in [first, second].iter().enumerate() {
+            let slopes: Vec<f64> = coefficients.windows(2).map(|w| n * (w[1] - w[0])).collect();
+            let curvatures: Vec<f64> = slopes
+                .windows(2)
+                .map(|w| (n - 1.0) * (w[1] - w[0]))
+                .collect();
+            for i in 0..=40 {
+                let s = i as f64 / 40.0 * 0.999;
+                let [value, slope, curvature] = values_and_derivatives(&lanes, 7, s);
+                let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * b.abs().max(1.0);
+                assert!(
+                    close(value[lane], de_casteljau(coefficients, s)),
+                    "value, s = {s}"
+                );
+                assert!(
+                    close(slope[lane], de_casteljau(&slopes, s)),
+                    "slope, s = {s}"
+                );
+                assert!(
+                    close(curvature[lane], de_casteljau(&curvatures, s)),
+                    "curvature, s = {s}"
+                );
+            }
+        }
+        // Only the first `len` coefficients count.
+        let padded: [[f64; 1]; 5] = [[1.0], [2.0], [4.0], [9.0], [9.0]];
+        let [value, slope, curvature] = values_and_derivatives(&padded, 3, 0.5);
+        assert_eq!((value[0], slope[0], curvature[0]), (2.25, 3.0, 2.0));
+    }
+
+    #[test]
+    fn a_square_is_the_convolution_with_itself() {
+        let a = [1.5, -2.0, 0.25, 3.0];
+        let (mut square, mut product) = ([0.5; 7], [0.5; 7]);
+        add_square(&a, &mut square);
+        convolve(&a, &a, &mut product, 1.0);
+        for (s, p) in square.iter().zip(&product) {
+            assert!((s - p).abs() < 1e-14, "{square:?} vs {product:?}");
+        }
+        for (n, row) in INVERSE_BINOMIAL.iter().enumerate() {
+            for k in 0..=n {
+                assert!((row[k] * BINOMIAL[n][k] - 1.0).abs() < 1e-15);
+            }
+        }
+    }
 }
