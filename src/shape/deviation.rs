@@ -10,14 +10,26 @@
 //! * rational curves, homogeneous `A = (w x, w y, w z, w)` = `(X, W)`:
 //!   `N = |X_old W_new - X_new W_old|²` and `D = (W_old W_new)²` (degree `4p`, `D > 0`).
 //!
+//! When both curves have the same knots (weight and control-point edits), the pieces are the
+//! knot spans, and for polynomial curves the gap's Bézier points are those of the difference
+//! of the two nets (blossoming is linear); spans where the nets agree are skipped.
+//!
 //! A Bernstein polynomial lies within the range of its coefficients, and its end coefficients
 //! are its end values. So when every coefficient of `N - M D` is `<= 0`, the squared gap is
-//! at most `M` on the whole interval. Starting from the pieces' end values, every interval
-//! that may still hold more than `M = best (1 + DEVIATION_RELATIVE_TOLERANCE)` is halved (de
-//! Casteljau), its midpoint value raising `best`, until none may. Near a maximum the bound
-//! tightens with the square of the interval's width: the first worked example takes 15 halvings.
+//! at most `M` on the whole interval. Starting from the pieces' end and midpoint values, every
+//! interval that may still hold more than `M = best (1 + DEVIATION_RELATIVE_TOLERANCE)` is
+//! split (de Casteljau), the split point's value raising `best`, until none may.
+//!
+//! Near an interior maximum a halved interval's bound tightens only with the square of its
+//! width (15–17 halvings per maximum for `1e-10`). So an interval whose control polygon of
+//! `N - M D` rises and then falls is split at a Newton estimate of the maximum instead
+//! ([`estimate_maximum`]): both parts then hold the maximum at an end where the slope
+//! vanishes, and pass the test after few more splits (one to four per solution for the
+//! worked example). Where an interval is split never changes what the test certifies.
 
-use crate::spline::bernstein::{BINOMIAL, MAX_RATIO_DEGREE, convolve, halve, unscale};
+use crate::spline::bernstein::{
+    BINOMIAL, INVERSE_BINOMIAL, MAX_RATIO_DEGREE, add_square, convolve, values_and_derivatives,
+};
 use crate::spline::{Curve, MAX_DEGREE};
 
 /// Relative precision of the squared deviation: the answer `d` is a distance the curves
@@ -26,14 +38,14 @@ use crate::spline::{Curve, MAX_DEGREE};
 /// size).
 pub const DEVIATION_RELATIVE_TOLERANCE: f64 = 1e-10;
 
-/// Halvings of one piece at most: its parts are then `2^-48` of it.
+/// Splits of one piece at most (halved parts are then `2^-48` of it).
 const MAX_DEPTH: u32 = 48;
 
-/// Halvings per call at most, which bounds the time whatever the input (the first worked
-/// example takes 15).
-const MAX_HALVINGS: usize = 4096;
+/// Splits per call at most, which bounds the time whatever the input.
+const MAX_SPLITS: usize = 4096;
 
-/// Gaps below this fraction of the control net's size count as zero (rounding noise).
+/// Gaps below this fraction of the size of the control points acting on the compared
+/// interval (their largest coordinate) count as zero (rounding noise).
 const ZERO_GAP: f64 = 1e-13;
 
 /// Largest distance `|s_old(u) - s_new(u)|` for `u` in `interval` (outside it the two curves
@@ -60,6 +72,7 @@ pub fn max_deviation_of_moved_poles(curve: &Curve, moved: &Curve, interval: (f64
 }
 
 /// The deviation between `curve` and the control net of `moved` over `new_knots`.
+/// The deviation between `curve` and the control net of `moved` over `new_knots`.
 fn max_deviation_between(
     curve: &Curve,
     moved: &Curve,
@@ -74,48 +87,138 @@ fn max_deviation_between(
     if hi <= lo {
         return 0.0;
     }
-    // Cubics (every shape request) get copies compiled for their exact sizes: 4 Bézier points,
-    // 7 coefficients (13 when rational).
+    let gap = Gap {
+        curve,
+        moved,
+        new_knots,
+        p,
+        // Coordinates beyond a planar curve's two are zero in both.
+        coordinates: curve.dimension().count().max(moved.dimension().count()),
+        lo,
+        hi,
+    };
+    // Cubics (every shape request) get copies compiled for their exact sizes: degree 3, 4 Bézier
+    // points, 7 coefficients (13 when rational, in two lanes: N and D).
     let squared = match (p, curve.is_rational() || moved.is_rational()) {
-        (3, false) => maximum_squared_gap::<4, 7>(curve, moved, 3, new_knots, lo, hi, false),
-        (3, true) => maximum_squared_gap::<4, 13>(curve, moved, 3, new_knots, lo, hi, true),
-        (p, rational) => maximum_squared_gap::<{ MAX_DEGREE + 1 }, { MAX_RATIO_DEGREE + 1 }>(
-            curve, moved, p, new_knots, lo, hi, rational,
-        ),
+        (3, false) => maximum_squared_gap::<3, 4, 1, 7>(gap),
+        (3, true) => maximum_squared_gap::<3, 4, 2, 13>(gap),
+        (_, false) => maximum_squared_gap::<0, { MAX_DEGREE + 1 }, 1, { 2 * MAX_DEGREE + 1 }>(gap),
+        (_, true) => maximum_squared_gap::<0, { MAX_DEGREE + 1 }, 2, { MAX_RATIO_DEGREE + 1 }>(gap),
     };
     squared.sqrt()
 }
 
-/// A part `[s0, s1]` of a piece in the search: the Bernstein coefficients of `N` and `D`
-/// there, the first `len` of `LEN` slots (`D` unused for polynomial curves).
-#[derive(Clone, Copy)]
-struct Interval<const LEN: usize> {
-    numerator: [f64; LEN],
-    denominator: [f64; LEN],
-    /// Halvings from the whole piece.
-    depth: u32,
+/// The curves' degree: `P`, a literal for cubics (so that the loops over the coefficients get
+/// fixed trip counts), or `gap.p` when `P = 0`.
+#[inline(always)]
+fn degree<const P: usize>(gap: &Gap) -> usize {
+    if P > 0 { P } else { gap.p }
 }
 
-/// The largest squared gap on `[lo, hi]` (module docs). `p` is the curve's degree (a literal
-/// for cubics, so that the loops over the coefficients get fixed trip counts), `POINTS > p`
-/// and `LEN >=` the number of coefficients (`2p + 1`, or `4p + 1` when `rational`).
-#[inline(always)]
-fn maximum_squared_gap<const POINTS: usize, const LEN: usize>(
-    curve: &Curve,
-    moved: &Curve,
+/// What the search compares: `curve` with the control net of `moved` over `new_knots`, on
+/// `[lo, hi]`, both of degree `p`, in `coordinates` coordinates.
+#[derive(Clone, Copy)]
+struct Gap<'a> {
+    curve: &'a Curve,
+    moved: &'a Curve,
+    new_knots: &'a [f64],
     p: usize,
-    new_knots: &[f64],
+    coordinates: usize,
     lo: f64,
     hi: f64,
-    rational: bool,
-) -> f64 {
-    debug_assert_eq!(p, curve.degree());
-    let len = if rational { 4 * p + 1 } else { 2 * p + 1 };
-    debug_assert!(p < POINTS && len <= LEN);
+}
+
+/// A part `[s0, s1]` of a piece in the search: the Bernstein coefficients of the squared
+/// gap's `N` and, for rational curves (`L = 2`), `D` there, lanes of the first
+/// `len` of `LEN` slots.
+#[derive(Clone, Copy)]
+struct Interval<const L: usize, const LEN: usize> {
+    coefficients: [[f64; L]; LEN],
+    /// Splits from the whole piece.
+    depth: u32,
+    /// Whether the part ends at a point where the search found a local maximum (a split at
+    /// a Newton estimate), where another estimate would only find that end again.
+    ends_at_estimate: bool,
+}
+
+/// `N / D` of one coefficient's lanes (`D = 1` for one lane).
+#[inline(always)]
+fn ratio<const L: usize>(lanes: [f64; L]) -> f64 {
+    if L == 2 {
+        lanes[0] / lanes[L - 1]
+    } else {
+        lanes[0]
+    }
+}
+
+/// `N - bound D` of one coefficient's lanes.
+#[inline(always)]
+fn excess<const L: usize>(lanes: [f64; L], bound: f64) -> f64 {
+    if L == 2 {
+        lanes[0] - bound * lanes[L - 1]
+    } else {
+        lanes[0] - bound
+    }
+}
+
+/// The squared gaps of the pieces of `[lo, hi]` as intervals of the search: one piece per
+/// knot span of the common vector when both curves have the same knots (the knot vector of
+/// a weight or control-point edit; pieces where both nets agree, without gap, are left out),
+/// else one between consecutive values of either vector.
+#[inline(always)]
+fn pieces<const P: usize, const POINTS: usize, const L: usize, const LEN: usize>(
+    gap: &Gap,
+    stack: &mut Vec<Interval<L, LEN>>,
+) {
+    let Gap {
+        curve,
+        moved,
+        new_knots,
+        lo,
+        hi,
+        ..
+    } = *gap;
+    let p = degree::<P>(gap);
     let old_knots = curve.knots();
+    if old_knots == new_knots {
+        // The span holding `start`: the last knot `<= start` (knots are sorted, `start` lies
+        // below the domain's end).
+        let mut span = old_knots.partition_point(|&u| u <= lo) - 1;
+        let mut start = lo;
+        let (old_net, new_net) = (curve.homogeneous(), moved.homogeneous());
+        loop {
+            let end = old_knots[span + 1].min(hi);
+            let (old, new) = (&old_net[span - p..=span], &new_net[span - p..=span]);
+            if old != new {
+                let piece = |net: &[[f64; 4]]| {
+                    let mut points = [[0.0; 4]; POINTS];
+                    curve.bezier_piece_of_net(old_knots, span, net, start, end, &mut points);
+                    points
+                };
+                stack.push(if L == 2 {
+                    rational_gap_on_piece::<P, POINTS, L, LEN>(gap, piece(old), piece(new))
+                } else {
+                    // Blossoming is linear in the net: the gap's points are those of the
+                    // difference of the nets.
+                    let mut difference = [[0.0; 4]; POINTS];
+                    for (d, (o, n)) in difference.iter_mut().zip(old.iter().zip(new)) {
+                        *d = std::array::from_fn(|c| o[c] - n[c]);
+                    }
+                    polynomial_gap_on_piece::<P, POINTS, L, LEN>(gap, piece(&difference[..=p]))
+                });
+            }
+            if end >= hi {
+                break;
+            }
+            start = end;
+            while old_knots[span + 1] <= start {
+                span += 1;
+            }
+        }
+        return;
+    }
     // Both knot vectors are sorted: merge their values inside (lo, hi), without repeats;
     // each piece between consecutive values becomes one interval of the search.
-    let mut stack: Vec<Interval<LEN>> = Vec::with_capacity(2 * (p + 2) + MAX_DEPTH as usize);
     let mut old_pieces = PieceCursor::<POINTS>::new(curve, old_knots);
     let mut new_pieces = PieceCursor::<POINTS>::new(moved, new_knots);
     let (mut i, mut k) = (0, 0);
@@ -137,120 +240,233 @@ fn maximum_squared_gap<const POINTS: usize, const LEN: usize>(
         }
         let old = old_pieces.next(start, end, p);
         let new = new_pieces.next(start, end, p);
-        stack.push(squared_gap_on_piece::<POINTS, LEN>(
-            p, old, new, len, rational,
-        ));
+        stack.push(if L == 2 {
+            rational_gap_on_piece::<P, POINTS, L, LEN>(gap, old, new)
+        } else {
+            let difference: [[f64; 4]; POINTS] =
+                std::array::from_fn(|i| std::array::from_fn(|c| old[i][c] - new[i][c]));
+            polynomial_gap_on_piece::<P, POINTS, L, LEN>(gap, difference)
+        });
         if end >= hi {
             break;
         }
         start = end;
     }
+}
 
-    let value_at = |interval: &Interval<LEN>, index: usize| {
-        let numerator = interval.numerator[index];
-        if rational {
-            numerator / interval.denominator[index]
-        } else {
-            numerator
-        }
-    };
-    // Squared gaps at most this count as zero (rounding noise).
-    let size = curve
-        .control_points()
+/// The largest squared gap on `[lo, hi]` (module docs). `POINTS > p`; `L` lanes, 1 for
+/// polynomial curves (`N`), 2 for rational ones (`N` and `D`); `LEN >=` the number of
+/// coefficients (`2p + 1`, or `4p + 1` when rational).
+#[inline(always)]
+fn maximum_squared_gap<const P: usize, const POINTS: usize, const L: usize, const LEN: usize>(
+    gap: Gap,
+) -> f64 {
+    let p = degree::<P>(&gap);
+    debug_assert_eq!(p, gap.curve.degree());
+    let len = if L == 2 { 4 * p + 1 } else { 2 * p + 1 };
+    debug_assert!(p < POINTS && len <= LEN);
+    let mut stack: Vec<Interval<L, LEN>> =
+        Vec::with_capacity(2 * (gap.curve.knots().len() + p) + MAX_DEPTH as usize);
+    pieces::<P, POINTS, L, LEN>(&gap, &mut stack);
+
+    // Squared gaps at most this count as zero (rounding noise): relative to the largest
+    // coordinate of the control points acting on [lo, hi] (the spans of lo and of hi's left
+    // limit, and all between).
+    let knots = gap.curve.knots();
+    let first = knots.partition_point(|&u| u <= gap.lo) - 1 - p;
+    let last = knots.partition_point(|&u| u < gap.hi) - 1;
+    let size = gap.curve.control_points()[first..=last]
         .iter()
-        .flatten()
+        .flat_map(|point| &point[..gap.coordinates])
         .fold(0.0, |size: f64, coordinate| size.max(coordinate.abs()));
     let zero = (ZERO_GAP * size) * (ZERO_GAP * size);
     // The pieces' end values and midpoint values start the search: a start near the largest
-    // gap lets the pieces far below it go without a single halving (a quarter fewer
-    // instructions for a weight solution's deviation; samples at 1/4 and 3/4 too gained 1%).
+    // gap lets the pieces far below it go without a single split.
     let degree = len - 1;
-    let midpoint_value = |interval: &Interval<LEN>| {
+    let midpoint_value = |interval: &Interval<L, LEN>| {
         // A Bernstein polynomial at s = 1/2 is Σ b_k C(d, k) / 2^d; the 2^d cancels in a ratio.
-        let at_half = |coefficients: &[f64; LEN]| {
-            coefficients[..len]
-                .iter()
-                .zip(&BINOMIAL[degree][..len])
-                .map(|(b, c)| b * c)
-                .sum::<f64>()
-        };
-        let numerator = at_half(&interval.numerator);
-        if rational {
-            numerator / at_half(&interval.denominator)
-        } else {
-            numerator * 0.5f64.powi(degree as i32)
+        let mut sum = [0.0; L];
+        for (lanes, &binomial) in interval.coefficients[..len].iter().zip(&BINOMIAL[degree]) {
+            for l in 0..L {
+                sum[l] += binomial * lanes[l];
+            }
         }
+        ratio(sum)
+            * if L == 2 {
+                1.0
+            } else {
+                0.5f64.powi(degree as i32)
+            }
     };
-    let mut best = stack
-        .iter()
-        .map(|interval| {
-            value_at(interval, 0)
-                .max(value_at(interval, len - 1))
-                .max(midpoint_value(interval))
-        })
-        .fold(0.0, f64::max);
-    let mut halvings = 0;
-    // Depth-first, so the stack stays short.
-    while let Some(interval) = stack.pop() {
+    let (mut best, mut best_piece) = (0.0, 0);
+    for (index, interval) in stack.iter().enumerate() {
+        let ends = ratio(interval.coefficients[0]).max(ratio(interval.coefficients[len - 1]));
+        let value = ends.max(midpoint_value(interval));
+        if value > best {
+            (best, best_piece) = (value, index);
+        }
+    }
+    // The piece with the largest start value is searched first: it most likely holds the
+    // maximum, and with `best` there the others mostly pass the test without a split.
+    if let Some(last) = stack.len().checked_sub(1) {
+        stack.swap(best_piece, last);
+    }
+    let mut splits = 0;
+    // Depth-first, so the stack stays short: the left part of a split is searched next.
+    let Some(mut interval) = stack.pop() else {
+        return best;
+    };
+    loop {
         let bound = best * (1.0 + DEVIATION_RELATIVE_TOLERANCE) + zero;
         // Whether the squared gap may exceed `bound`: some coefficient of N - bound D is
         // positive (NaN never is).
-        let numerator = &interval.numerator[..len];
-        let may_exceed = if rational {
-            numerator
-                .iter()
-                .zip(&interval.denominator[..len])
-                .any(|(&n, &d)| n - bound * d > 0.0)
-        } else {
-            numerator.iter().any(|&n| n > bound)
-        };
-        if !may_exceed || interval.depth >= MAX_DEPTH || halvings >= MAX_HALVINGS {
+        let may_exceed = interval.coefficients[..len]
+            .iter()
+            .any(|&lanes| excess(lanes, bound) > 0.0);
+        if !may_exceed || interval.depth >= MAX_DEPTH || splits >= MAX_SPLITS {
+            match stack.pop() {
+                Some(next) => interval = next,
+                None => return best,
+            }
             continue;
         }
-        halvings += 1;
-        let (mut left, mut right) = (interval, interval);
-        left.depth += 1;
-        right.depth += 1;
-        if rational {
-            halve_pair(&interval, &mut left, &mut right, len);
+        splits += 1;
+        // Split at the local maximum when Newton finds one inside, else halve.
+        let estimate = if interval.ends_at_estimate {
+            None
         } else {
-            halve(
-                &interval.numerator[..len],
-                &mut left.numerator[..len],
-                &mut right.numerator[..len],
-            );
-        }
-        best = best.max(value_at(&left, len - 1));
-        stack.push(right);
-        stack.push(left);
+            estimate_maximum(&interval.coefficients, len, bound)
+        };
+        interval.depth += 1;
+        interval.ends_at_estimate |= estimate.is_some();
+        stack.push(interval);
+        let right = stack.last_mut().expect("just pushed");
+        split(
+            &mut interval.coefficients,
+            &mut right.coefficients,
+            len,
+            estimate.unwrap_or(0.5),
+        );
+        best = best.max(ratio(right.coefficients[0]));
     }
-    best
 }
 
-/// [`halve`] of the numerator and the denominator together (de Casteljau at `s = 1/2`): one
-/// loop over both, which the compiler runs two lanes wide.
+/// Newton steps at most for a local maximum.
+const NEWTON_STEPS: usize = 6;
+
+/// A Newton step this small (in the part's parameter) ends the iteration: the next would be
+/// about its square.
+const NEWTON_CONVERGED: f64 = 1e-5;
+
+/// Estimates too close to an end of the part are left to halving.
+const ESTIMATE_MARGIN: f64 = 1e-6;
+
+/// Where in `(0, 1)` the squared gap `f = N / D` with the Bernstein coefficients
+/// `coefficients` (lanes as in [`Interval`]) has a local maximum, by Newton's method on
+/// `(log f)' = N'/N - D'/D` (its zeros are the critical points; at a maximum its derivative
+/// is negative) from where the control polygon of the derivative of `N - bound D` crosses
+/// zero; `None` when the iteration leaves the part, meets no maximum or does not settle, or
+/// the largest coefficient of `N - bound D` is an end one.
+///
+/// A split there makes the search's bound tight to second order: each part then holds the
+/// maximum at its end, where the slope vanishes, so that the Bernstein coefficients of
+/// `N - M D` next to that end are `N - M D` itself, `<= 0` once `best` has the value there,
+/// and the next ones fall with the square of the distance; halving alone would have to
+/// narrow the part until its width squared were below the tolerance.
 #[inline(always)]
-fn halve_pair<const LEN: usize>(
-    interval: &Interval<LEN>,
-    left: &mut Interval<LEN>,
-    right: &mut Interval<LEN>,
+fn estimate_maximum<const L: usize, const LEN: usize>(
+    coefficients: &[[f64; L]; LEN],
     len: usize,
+    bound: f64,
+) -> Option<f64> {
+    let degree = len - 1;
+    // Only a control polygon of N - bound D that rises to its largest coefficient and then
+    // falls (one sign change of its derivative's, hence one critical point of N - bound D)
+    // gets an estimate: elsewhere halving separates the maxima first.
+    let mut excesses = [0.0; LEN];
+    for (value, &lanes) in excesses.iter_mut().zip(&coefficients[..len]) {
+        *value = excess(lanes, bound);
+    }
+    let excesses = &excesses[..len];
+    let rising = excesses.windows(2).take_while(|w| w[1] > w[0]).count();
+    let largest = rising;
+    if largest == 0 || largest == degree || excesses[largest..].windows(2).any(|w| w[1] > w[0]) {
+        return None;
+    }
+    // Start where the control polygon of the derivative crosses zero.
+    let (rise, fall) = (
+        excesses[largest] - excesses[largest - 1],
+        excesses[largest + 1] - excesses[largest],
+    );
+    let mut s = (largest as f64 - 1.0 + rise / (rise - fall)) / (degree - 1) as f64;
+    // Newton on the mirrored polynomials (coefficients reversed) from a start past the
+    // middle, where the Horner form of the evaluation is best conditioned.
+    let mirrored = s > 0.5;
+    let mut oriented = *coefficients;
+    if mirrored {
+        oriented[..len].reverse();
+        s = 1.0 - s;
+    }
+    for _ in 0..NEWTON_STEPS {
+        let [value, slope, curvature] = values_and_derivatives(&oriented, len, s);
+        // The derivative of log N - log D and its own derivative.
+        let (mut q, mut q1) = (0.0, 0.0);
+        for l in 0..L {
+            let relative = slope[l] / value[l];
+            let sign = if l == 0 { 1.0 } else { -1.0 };
+            q += sign * relative;
+            q1 += sign * (curvature[l] / value[l] - relative * relative);
+        }
+        // Not near a maximum (or NaN).
+        if q1.is_nan() || q1 >= 0.0 {
+            return None;
+        }
+        let step = q / q1;
+        s -= step;
+        if !(ESTIMATE_MARGIN..=1.0 - ESTIMATE_MARGIN).contains(&s) {
+            return None;
+        }
+        if step.abs() <= NEWTON_CONVERGED {
+            return Some(if mirrored { 1.0 - s } else { s });
+        }
+    }
+    None
+}
+
+/// Splits Bernstein polynomials on `[0, 1]` (lanes as in [`Interval`], the first `len`
+/// coefficients) at `s` (de Casteljau): `left` and `right` both hold the coefficients of the
+/// whole; `left` gets those of `[0, s]`, `right` those of `[s, 1]`, each again on `[0, 1]`.
+#[inline(always)]
+fn split<const L: usize, const LEN: usize>(
+    left: &mut [[f64; L]; LEN],
+    right: &mut [[f64; L]; LEN],
+    len: usize,
+    s: f64,
 ) {
-    let mut work: [[f64; 2]; LEN] =
-        std::array::from_fn(|i| [interval.numerator[i], interval.denominator[i]]);
-    left.numerator[0] = work[0][0];
-    left.denominator[0] = work[0][1];
+    // With `len` known to be `LEN` (cubics), the loops have fixed trip counts and unroll.
+    if len == LEN {
+        split_first(left, right, LEN, s);
+    } else {
+        split_first(left, right, len, s);
+    }
+}
+
+/// [`split`] of the first `len` coefficients.
+#[inline(always)]
+fn split_first<const L: usize, const LEN: usize>(
+    left: &mut [[f64; L]; LEN],
+    right: &mut [[f64; L]; LEN],
+    len: usize,
+    s: f64,
+) {
+    // Indices, not iterators: the triangle of de Casteljau reads plainly and unrolls.
+    #[allow(clippy::needless_range_loop)]
     for level in 1..len {
         for i in 0..len - level {
-            let (a, b) = (work[i], work[i + 1]);
-            work[i] = [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])];
+            let (a, b) = (right[i], right[i + 1]);
+            right[i] = std::array::from_fn(|l| a[l] + s * (b[l] - a[l]));
         }
-        left.numerator[level] = work[0][0];
-        left.denominator[level] = work[0][1];
-    }
-    for (i, [numerator, denominator]) in work.iter().take(len).enumerate() {
-        right.numerator[i] = *numerator;
-        right.denominator[i] = *denominator;
+        left[level] = right[0];
     }
 }
 
@@ -324,66 +540,102 @@ fn split_bezier(points: &mut [[f64; 4]], s: f64, left: &mut [[f64; 4]]) {
     }
 }
 
-/// The squared gap on a piece where the old curve has the Bézier points `old` and the new
-/// one `new` (degree `p`), as a search interval: `len` Bernstein coefficients of `N` and,
-/// when `rational`, of `D`.
+/// The squared gap `N = |G|²` on a piece where the old curve minus the new one has the
+/// Bézier points `gap` (polynomial curves, `D = 1`), as a search interval.
 ///
 /// Products are formed in the scaled basis `s^k (1 - s)^(d-k)`, whose coefficients are
 /// `C(d, k)` times the Bernstein ones: there a product is a plain convolution.
 #[inline(always)]
-fn squared_gap_on_piece<const POINTS: usize, const LEN: usize>(
-    p: usize,
+fn polynomial_gap_on_piece<
+    const P: usize,
+    const POINTS: usize,
+    const L: usize,
+    const LEN: usize,
+>(
+    gap: &Gap,
+    mut points: [[f64; 4]; POINTS],
+) -> Interval<L, LEN> {
+    let p = degree::<P>(gap);
+    scale_points(&mut points, p);
+    let mut numerator = [0.0; LEN];
+    let column = |c: usize| -> [f64; POINTS] { std::array::from_fn(|i| points[i][c]) };
+    for c in 0..gap.coordinates {
+        add_square(&column(c)[..p + 1], &mut numerator[..2 * p + 1]);
+    }
+    interval(&numerator, &numerator, 2 * p + 1)
+}
+
+/// The squared gap on a piece where the old curve has the homogeneous Bézier points `old`
+/// and the new one `new` (rational curves): `N = |X_old W_new - X_new W_old|²` and
+/// `D = (W_old W_new)²`, products in the scaled basis as in [`polynomial_gap_on_piece`].
+#[inline(always)]
+fn rational_gap_on_piece<const P: usize, const POINTS: usize, const L: usize, const LEN: usize>(
+    gap: &Gap,
     mut old: [[f64; 4]; POINTS],
     mut new: [[f64; 4]; POINTS],
-    len: usize,
-    rational: bool,
-) -> Interval<LEN> {
-    for i in 0..p + 1 {
-        let scale = BINOMIAL[p][i];
-        for c in 0..4 {
-            old[i][c] *= scale;
-            new[i][c] *= scale;
-        }
-    }
-    let mut interval = Interval {
-        numerator: [0.0; LEN],
-        denominator: [0.0; LEN],
-        depth: 0,
+) -> Interval<L, LEN> {
+    let p = degree::<P>(gap);
+    scale_points(&mut old, p);
+    scale_points(&mut new, p);
+    let column = |points: &[[f64; 4]; POINTS], c: usize| -> [f64; POINTS] {
+        std::array::from_fn(|i| points[i][c])
     };
-    let numerator = &mut interval.numerator[..len];
-    if rational {
-        let column = |points: &[[f64; 4]; POINTS], c: usize| -> [f64; POINTS] {
-            std::array::from_fn(|i| points[i][c])
-        };
-        let (old_w, new_w) = (column(&old, 3), column(&new, 3));
-        let mut cross = [0.0; LEN];
-        let cross = &mut cross[..2 * p + 1];
-        for c in 0..3 {
-            // X_old W_new - X_new W_old, then its square into N.
-            cross.fill(0.0);
-            convolve(&column(&old, c)[..p + 1], &new_w[..p + 1], cross, 1.0);
-            convolve(&column(&new, c)[..p + 1], &old_w[..p + 1], cross, -1.0);
-            convolve(cross, cross, numerator, 1.0);
-        }
+    let len = 4 * p + 1;
+    let (mut numerator, mut denominator) = ([0.0; LEN], [0.0; LEN]);
+    let (old_w, new_w) = (column(&old, 3), column(&new, 3));
+    let mut cross = [0.0; LEN];
+    let cross = &mut cross[..2 * p + 1];
+    for c in 0..gap.coordinates {
+        // X_old W_new - X_new W_old, then its square into N.
         cross.fill(0.0);
-        convolve(&old_w[..p + 1], &new_w[..p + 1], cross, 1.0);
-        let denominator = &mut interval.denominator[..len];
-        convolve(cross, cross, denominator, 1.0);
-        unscale(denominator);
-    } else {
-        for c in 0..3 {
-            let gap: [f64; POINTS] = std::array::from_fn(|i| old[i][c] - new[i][c]);
-            convolve(&gap[..p + 1], &gap[..p + 1], numerator, 1.0);
+        convolve(&column(&old, c)[..p + 1], &new_w[..p + 1], cross, 1.0);
+        convolve(&column(&new, c)[..p + 1], &old_w[..p + 1], cross, -1.0);
+        add_square(cross, &mut numerator[..len]);
+    }
+    cross.fill(0.0);
+    convolve(&old_w[..p + 1], &new_w[..p + 1], cross, 1.0);
+    add_square(cross, &mut denominator[..len]);
+    interval(&numerator, &denominator, len)
+}
+
+/// Bézier points (the first `p + 1`) to the scaled basis: `C(p, i)` times the `i`-th.
+#[inline(always)]
+fn scale_points<const POINTS: usize>(points: &mut [[f64; 4]; POINTS], p: usize) {
+    for (point, &scale) in points.iter_mut().zip(&BINOMIAL[p][..p + 1]) {
+        for value in point.iter_mut() {
+            *value *= scale;
         }
     }
-    unscale(&mut interval.numerator[..len]);
-    interval
+}
+
+/// The search interval of a whole piece from the first `len` scaled-basis coefficients of
+/// `N` and `D` (the latter unused in one lane): Bernstein coefficients, products with
+/// `1 / C(d, k)`.
+#[inline(always)]
+fn interval<const L: usize, const LEN: usize>(
+    numerator: &[f64; LEN],
+    denominator: &[f64; LEN],
+    len: usize,
+) -> Interval<L, LEN> {
+    let inverse = &INVERSE_BINOMIAL[len - 1];
+    Interval {
+        coefficients: std::array::from_fn(|k| {
+            if k < len {
+                std::array::from_fn(|l| [numerator, denominator][l][k] * inverse[k])
+            } else {
+                [0.0; L]
+            }
+        }),
+        depth: 0,
+        ends_at_estimate: false,
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::spline::CurveLimits;
+    use crate::spline::bernstein::halve;
     use crate::spline::vector::distance;
 
     fn curve(degree: usize, points: &[&[f64]], knots: &[f64], weights: Option<&[f64]>) -> Curve {
