@@ -13,6 +13,10 @@ use knotshape::spline::vector::distance;
 use knotshape::spline::{Curve, CurveLimits};
 use proptest::prelude::*;
 
+mod common;
+
+use common::SplitMix64 as Rng;
+
 /// Uniform samples of the brute force on the compared interval (knots are sampled too).
 const SAMPLES: usize = 3000;
 
@@ -35,31 +39,6 @@ fn config() -> ProptestConfig {
         ),
         failure_persistence: None,
         ..ProptestConfig::default()
-    }
-}
-
-/// A small deterministic generator (SplitMix64), seeded by proptest.
-struct Rng(u64);
-
-impl Rng {
-    fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-    fn unit(&mut self) -> f64 {
-        (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.unit()
-    }
-    fn below(&mut self, n: usize) -> usize {
-        (self.next_u64() % n as u64) as usize
-    }
-    fn chance(&mut self, p: f64) -> bool {
-        self.unit() < p
     }
 }
 
@@ -309,7 +288,7 @@ proptest! {
 
     #[test]
     fn deviation_is_attained_and_certified(seed in any::<u64>()) {
-        let mut rng = Rng(seed);
+        let mut rng = Rng::new(seed);
         let case = random_case(&mut rng);
         check(&case)?;
     }
