@@ -392,8 +392,7 @@ fn estimate_maximum<const L: usize, const LEN: usize>(
         *value = excess(lanes, bound);
     }
     let excesses = &excesses[..len];
-    let rising = excesses.windows(2).take_while(|w| w[1] > w[0]).count();
-    let largest = rising;
+    let largest = excesses.windows(2).take_while(|w| w[1] > w[0]).count();
     if largest == 0 || largest == degree || excesses[largest..].windows(2).any(|w| w[1] > w[0]) {
         return None;
     }

@@ -7,7 +7,7 @@ use super::method::{
 };
 use super::nearest::nearest_reachable;
 use super::regions::{PolygonOptions, region_polygons};
-use super::solve::{ShapeError, Solution, SolveOptions, solve};
+use super::solve::{ShapeError, Solution, SolveOptions, affected_domain, solve};
 use crate::spline::Curve;
 use crate::spline::vector::Point;
 
@@ -71,7 +71,7 @@ impl EditMethod for KnotPairs {
         let mut candidates = region_polygons(&edit.query, options).unwrap_or_default();
         if !edit.constraints.is_empty() {
             let curve = edit.query.curve;
-            let (knots, p) = (curve.knots(), curve.degree());
+            let p = curve.degree();
             let n = curve.control_points().len() - 1;
             for entry in &mut candidates {
                 let moved = entry.candidate.moved_knot;
@@ -81,7 +81,7 @@ impl EditMethod for KnotPairs {
                     let affected = if qmin <= p || qmax > n {
                         (f64::NEG_INFINITY, f64::INFINITY)
                     } else {
-                        (knots[(qmin - p).max(p)], knots[(qmax + p).min(n + 1)])
+                        affected_domain(curve, curve.knots(), &[qmin, qmax])
                     };
                     edit.constraints.surely_kept_outside(curve, affected)
                 });
