@@ -8,7 +8,8 @@
 //! generated schemas) or do not bound their work on hostile input; these few entities need a
 //! tokenizer and a parser of Part 21's instance syntax with limits (`step/syntax.rs`), and this
 //! reader and writer of the entities, small enough to be fuzzed whole
-//! (fuzz/fuzz_targets/step_import.rs).
+//! (fuzz/fuzz_targets/step_import.rs). The reader and the writer stay together (about 530
+//! lines, then their tests): each is the other's check, entity by entity.
 //!
 //! Reading: the syntax of the whole file is checked (header, data sections, every instance),
 //! only `CARTESIAN_POINT`s and the B-spline curves are kept, and every curve's control points
