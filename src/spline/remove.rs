@@ -116,10 +116,13 @@ pub(crate) fn local_removal(
             q[i - 1 - first] = value;
         }
     }
-    if middle == last {
-        from_right = points[last + 1];
+    // Where the sweeps meet inside the chain, the two estimates of that point are averaged.
+    // When one sweep took every equation (the middle at an end of the chain), its estimate
+    // of the end is the other's fixed neighbour P_first or P_{last+1}: the end stays, and the
+    // mismatch is in the bound below (the curve must not change beyond its own span there).
+    if first < middle && middle < last {
+        q[middle - first] = std::array::from_fn(|c| 0.5 * (from_left[c] + from_right[c]));
     }
-    q[middle - first] = std::array::from_fn(|c| 0.5 * (from_left[c] + from_right[c]));
     if q.iter()
         .any(|h| h.iter().any(|x| !x.is_finite()) || h[3] <= 0.0)
     {
@@ -562,6 +565,26 @@ fn piece_bound(old: &BezierPiece, new: &BezierPiece, limit: f64, halvings: u32) 
 mod tests {
     use super::*;
     use crate::spline::CurveLimits;
+
+    /// A removal whose sweeps meet at an end of the chain keeps that end's pole (the curve
+    /// changes only inside the removed knot's span), and its bound is the largest pole
+    /// change of the net with the knot inserted again, computed here by hand.
+    #[test]
+    fn a_removal_keeps_the_poles_at_the_ends_of_its_chain() {
+        // Degree 1, knots 0, 0, 0.1, 1, 1: α_1 = 0.1 (below 1/4), so the right sweep takes
+        // the one equation; the chain's ends P_0 and P_2 stay.
+        let knots = [0.0, 0.0, 0.1, 1.0, 1.0];
+        let points = [
+            [0.0, 0.0, 0.0, 1.0],
+            [0.1, 0.05, 0.0, 1.0],
+            [1.0, 0.0, 0.0, 1.0],
+        ];
+        let removal = local_removal(1, &knots, &points, 2, 1, false).unwrap();
+        assert_eq!(removal.first, 0);
+        assert_eq!(removal.points.as_slice(), [points[0], points[2]]);
+        // With 0.1 inserted again, P'_1 = 0.9 P_0 + 0.1 P_2 = (0.1, 0): P_1 moves by 0.05.
+        assert!((removal.bound - 0.05).abs() < 1e-15, "{}", removal.bound);
+    }
 
     fn cubic() -> Curve {
         let points = [

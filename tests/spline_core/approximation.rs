@@ -303,3 +303,52 @@ fn bad_requests_are_refused() {
         Err(ApproximationError::Points(PointsError::AllPointsCoincide))
     ));
 }
+
+/// A zig-zag of 21 points that a random run of the property above found (degree 1, chord
+/// length, ends exact, tolerance 10^-1.3018 of the size): the start must be exact too.
+#[test]
+fn a_degree_1_zig_zag_keeps_both_ends_exact() {
+    let points: Vec<Vec<f64>> = vec![
+        vec![0.0, 0.5506365822551728],
+        vec![1.0, -0.6909199412562784],
+        vec![2.0, 0.5],
+        vec![3.0, -0.5],
+        vec![4.0, 0.7053968849529083],
+        vec![5.125600233132254, -1.1821151646734522],
+        vec![6.125476862537245, 0.5],
+        vec![7.0, -0.9058495348394895],
+        vec![8.118718576098612, 1.3163802585204067],
+        vec![9.09908891703313, -0.6408690644273349],
+        vec![10.0, 0.8465243594077874],
+        vec![11.103707113293938, -0.7408475487105379],
+        vec![12.0, 0.9049036065459004],
+        vec![13.144708137893236, -1.3449438487993084],
+        vec![14.0, 0.5],
+        vec![15.0, -1.4272567922600365],
+        vec![16.09384503507483, 1.1472027181288618],
+        vec![17.130127625518643, -0.6196689796851234],
+        vec![18.174580829909786, 0.5],
+        vec![19.0, -0.5],
+        vec![20.10350116163413, 1.28758022956938],
+    ];
+    let case = PointCase {
+        shape: super::point_sets::Shape::ZigZag,
+        points,
+    };
+    let set = PointSet::new(&case.points, 10_000).unwrap();
+    let spec = ApproximationSpec {
+        degree: 1,
+        tolerance: 10f64.powf(-1.3018006183793578) * case.size(),
+        parametrization: Parametrization::ChordLength,
+        end_points_exact: true,
+    };
+    let answer = approximate(&set, &spec, &CurveLimits::default()).unwrap();
+    check(
+        &case,
+        &spec,
+        &answer.curve,
+        answer.max_error,
+        &answer.parameters,
+    )
+    .unwrap();
+}
