@@ -68,8 +68,7 @@ fn closest(curve: &Curve, q: P3, range: Option<(f64, f64)>) -> (f64, f64) {
 proptest! {
     #![proptest_config(proptest::test_runner::Config {
         cases: 1024,
-        failure_persistence: None,
-        ..proptest::test_runner::Config::default()
+        ..super::config()
     })]
 
     /// ≥ 1000 random curves (degrees 1–5, 2D/3D, rational or not, clamped or not, both knot

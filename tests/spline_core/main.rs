@@ -33,12 +33,19 @@ const CASES: u32 = 192;
 const MAX_SHRINK_MS: u32 = 20_000;
 
 /// The proptest configuration of every property in this suite. Failures are not persisted:
-/// a case worth keeping becomes a named test.
+/// a case worth keeping becomes a named test. The seed is fixed, so that CI is repeatable,
+/// unless `PROPTEST_RNG_SEED` names another (for hunts: a random run found the approximation
+/// case now kept as `a_degree_1_zig_zag_keeps_both_ends_exact`).
 fn config() -> Config {
+    let seed = std::env::var("PROPTEST_RNG_SEED")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(0x7370_6c69);
     Config {
         cases: CASES,
         max_shrink_time: MAX_SHRINK_MS,
         failure_persistence: None,
+        rng_seed: proptest::test_runner::RngSeed::Fixed(seed),
         ..Config::default()
     }
 }
