@@ -258,6 +258,7 @@ fn check_shape(case: &Case, size: f64) -> Result<(), String> {
     let query = ShapeQuery {
         side: SideChoice::Both,
         pairs: &KnotPair::ALL,
+        families: Default::default(),
         keep_domain: case.fractions[3] < 0.7,
         ..ShapeQuery::new(curve, t)
     };

@@ -9,6 +9,7 @@ use std::fmt;
 use super::candidate::Side;
 use super::constraints::{Breach, ConstraintSet};
 use super::control_points::ControlPointFailure;
+use super::family::{Family, FamilyGroup, KnotSet};
 use super::method::{
     EditContext, EditSolution, MethodFailure, MethodKind, MethodMembership, MethodNearest,
     Reachable, RegionKey, WeightRegion,
@@ -178,6 +179,9 @@ pub struct EditOutcome {
     /// The knot pairs' candidates, with membership of the requested pairs (`contains` exactly
     /// when a kept solution has that side and pair); empty unless the knot method ran.
     pub candidates: Vec<CandidateOutcome>,
+    /// Every requested knot family with the membership of its pairs or triples (`contains`
+    /// exactly when a kept solution moves those knots); empty unless the knot method ran.
+    pub families: Vec<FamilyGroup>,
     /// Weight pairs active at `t`, when the weight method ran.
     pub weight_pairs: Option<Vec<WeightPairMembership>>,
     /// The kept control-point move's changed poles, when the method ran: `Some(None)` when it
@@ -295,6 +299,7 @@ pub fn edit(
     let blocked = blocker(edit.constraints);
     let mut outcome = EditOutcome {
         candidates: Vec::new(),
+        families: Vec::new(),
         weight_pairs: None,
         control_points: None,
         solutions: Vec::new(),
@@ -343,19 +348,36 @@ pub fn edit(
         }
         let holds = |key: RegionKey| kept.iter().any(|s| s.region_key() == key);
         match found.membership {
-            MethodMembership::Candidates(candidates) => {
+            MethodMembership::Knots { candidates, groups } => {
                 knot_candidates = Some(
                     candidates
                         .into_iter()
                         .map(|mut entry| {
                             let side: Side = entry.candidate.side;
                             for region in &mut entry.regions {
-                                region.contains = holds(RegionKey::Knots(side, region.pair));
+                                region.contains = holds(RegionKey::Knots {
+                                    family: Family::Envelope,
+                                    side: Some(side),
+                                    knots: KnotSet::new(&region.knots),
+                                });
                             }
                             entry
                         })
                         .collect(),
                 );
+                outcome.families = groups
+                    .into_iter()
+                    .map(|mut group| {
+                        for member in &mut group.members {
+                            member.contains = holds(RegionKey::Knots {
+                                family: group.problem.family,
+                                side: group.problem.side,
+                                knots: member.knots,
+                            });
+                        }
+                        group
+                    })
+                    .collect();
             }
             MethodMembership::WeightPairs(pairs) => {
                 outcome.weight_pairs = Some(

@@ -17,6 +17,7 @@ use crate::http::extract::ApiJson;
 use crate::http::middleware::AdmissionPermit;
 use crate::http::regions_media;
 use crate::http::state::AppState;
+use crate::http::wire::families::family_memberships;
 use crate::http::wire::methods::{ControlPointMembershipBody, ExclusionBody, WeightMembershipBody};
 use crate::http::wire::shape_answer::{
     MembershipResponse, NearestBody, RegionsResponse, SolveResponse, membership_candidates,
@@ -64,6 +65,7 @@ pub async fn membership(
         Ok(MembershipResponse {
             reachable: outcome.reachable(),
             candidates: membership_candidates(curve, &outcome.candidates),
+            families: family_memberships(curve, &outcome.families),
             control_points: outcome.control_points.clone().map(|changed| {
                 ControlPointMembershipBody {
                     contains: changed.is_some(),
@@ -103,6 +105,7 @@ fn run_edit(
     let parsed = ParsedShape::parse(
         &request.curve,
         &request.regions,
+        request.knot_families.as_deref(),
         request.methods.as_deref(),
         curve_limits,
     )?;
@@ -176,6 +179,7 @@ pub async fn solve(
         Ok(SolveResponse {
             reachable: !solutions.is_empty(),
             candidates: membership_candidates(curve, &outcome.candidates),
+            families: family_memberships(curve, &outcome.families),
             solutions,
             nearest,
             excluded: outcome.excluded.iter().map(ExclusionBody::from).collect(),
@@ -231,6 +235,7 @@ fn regions_request(
     let parsed = ParsedShape::parse(
         &request.curve,
         &request.regions,
+        request.knot_families.as_deref(),
         request.methods.as_deref(),
         curve_limits,
     );

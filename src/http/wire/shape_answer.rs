@@ -8,6 +8,7 @@ use utoipa::ToSchema;
 use crate::http::curve::{WirePoint, point_to_wire};
 use crate::http::error::ApiError;
 use crate::http::pointer::JsonPointer;
+use crate::http::wire::families::FamilyMembershipBody;
 use crate::http::wire::methods::{ControlPointMembershipBody, ExclusionBody, WeightMembershipBody};
 use crate::http::wire::shape_request::{CandidateSide, Region};
 use crate::http::wire::solutions::SolutionBody;
@@ -90,8 +91,12 @@ pub struct MembershipResponse {
     /// Whether any requested method reaches the target: a region of a candidate holds it, a
     /// weight pair does, or the control-point move meets it (and every constraint).
     pub reachable: bool,
-    /// One entry per requested side, when `methods` holds `knots` (else empty).
+    /// A cubic's envelope candidates, one per requested side, when `methods` holds `knots`
+    /// (else empty).
     pub candidates: Vec<MembershipCandidate>,
+    /// Every requested knot family (and envelope side) with the membership of its pairs or
+    /// triples, when `methods` holds `knots` (else empty); a cubic's envelope is here too.
+    pub families: Vec<FamilyMembershipBody>,
     /// The control-point move, when `methods` holds `control_points`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub control_points: Option<ControlPointMembershipBody>,
@@ -128,9 +133,12 @@ pub struct NearestBody {
 pub struct SolveResponse {
     /// Whether any solution exists (`false` is a normal answer, not an error).
     pub reachable: bool,
-    /// One entry per requested side, with region membership, when `methods` holds `knots`
-    /// (else empty).
+    /// A cubic's envelope candidates, one per requested side, with region membership, when
+    /// `methods` holds `knots` (else empty).
     pub candidates: Vec<MembershipCandidate>,
+    /// Every requested knot family (and envelope side) with the membership of its pairs or
+    /// triples, when `methods` holds `knots` (else empty); a cubic's envelope is here too.
+    pub families: Vec<FamilyMembershipBody>,
     /// Every solution of every requested method, sorted by `max_deviation`, smallest first.
     pub solutions: Vec<SolutionBody>,
     /// With `nearest: true`, when no solution reaches the target: the nearest reachable

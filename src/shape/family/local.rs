@@ -132,6 +132,12 @@ impl LocalProblem {
 
     /// The homogeneous point for the local knots `knots` (de Boor, module docs).
     pub fn homogeneous_point(&self, knots: &[f64]) -> [f64; 4] {
+        self.homogeneous_point_with(knots, &[])
+    }
+
+    /// De Boor with the ratios `α_{l,r}` listed in `ratios` (as `((l, r), α)`) set to the
+    /// given values instead of computed from the knots.
+    pub fn homogeneous_point_with(&self, knots: &[f64], ratios: &[((usize, usize), f64)]) -> [f64; 4] {
         let q = self.degree;
         let u = self.parameter;
         let mut d = self.poles.clone();
@@ -139,10 +145,10 @@ impl LocalProblem {
             for l in (r..=q).rev() {
                 let (lo, hi) = self.ratio_knots(l, r);
                 let span = knots[hi] - knots[lo];
-                let alpha = if span > 0.0 {
-                    (u - knots[lo]) / span
-                } else {
-                    0.0
+                let alpha = match ratios.iter().find(|(at, _)| *at == (l, r)) {
+                    Some(&(_, alpha)) => alpha,
+                    None if span > 0.0 => (u - knots[lo]) / span,
+                    None => 0.0,
                 };
                 for c in 0..4 {
                     d[l][c] = d[l - 1][c] + alpha * (d[l][c] - d[l - 1][c]);

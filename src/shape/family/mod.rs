@@ -6,3 +6,9 @@
 pub(crate) mod isolate;
 pub(crate) mod local;
 pub(crate) mod tensor;
+pub(crate) mod problems;
+pub(crate) mod roots;
+pub(crate) mod solve;
+
+pub use problems::{Family, FamilyChoice, FamilyNotApplicable, FamilyProblem};
+pub use solve::{FamilyGroup, FamilyOutcome, KnotSet, KnotSolution, SetMembership, solve_families};

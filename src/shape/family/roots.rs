@@ -1,0 +1,290 @@
+//! Every admissible solution of one set of unknown knots (docs/method.md §31.3): closed forms
+//! where they exist (`q = 2`: the paper's six; the outermost pair of any degree: a 2 × 2
+//! linear system), certified subdivision ([`super::isolate`]) for the rest, each root then
+//! polished by Newton's method on de Boor itself and checked against the admissible box.
+
+use super::isolate::{IsolationOptions, invert, isolate};
+use super::local::{LocalProblem, SearchBox};
+use super::tensor::MAX_VARIABLES;
+use crate::shape::candidate::{Frame, triangle_frame};
+use crate::shape::pairs::{CLAMP_TOLERANCE, KNOT_TOLERANCE, KnotPair, LocalKnots, solve_pair};
+use crate::spline::vector::{Point, dot, sub};
+
+/// The search box is widened by this fraction of each unknown's interval, so that roots on
+/// a bound (a knot moved onto its neighbour) lie inside it.
+pub const SEARCH_MARGIN: f64 = 1e-9;
+
+/// Triples keep the span at least this fraction of its room away from collapsing onto `t`
+/// (where three unknowns meeting at `t` would make the system vanish on a line).
+pub const TRIPLE_COLLAPSE: f64 = 1e-7;
+
+/// Newton steps at most when polishing a root on de Boor.
+const POLISH_STEPS: usize = 8;
+
+/// A solution of one unknown set: the whole local knot vector.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LocalRoot {
+    /// `t_0 ..= t_{2q+1}` with the unknowns solved.
+    pub knots: Vec<f64>,
+    /// Found by a closed form or certified by Krawczyk's test.
+    pub certified: bool,
+}
+
+/// How one unknown set was solved (for tests and benchmarks).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Solver {
+    /// The paper's closed forms (`q = 2`).
+    Quadratic,
+    /// The outermost pair's linear system.
+    Outermost,
+    /// Certified subdivision.
+    Subdivision,
+}
+
+/// The solver that `unknowns` of `problem` get.
+pub fn solver_for(problem: &LocalProblem, unknowns: &[usize]) -> Solver {
+    let q = problem.degree;
+    if unknowns.len() == 2 && q == 2 {
+        Solver::Quadratic
+    } else if unknowns.len() == 2 && unknowns == [1, 2 * q] {
+        Solver::Outermost
+    } else {
+        Solver::Subdivision
+    }
+}
+
+/// Every admissible local knot vector with `rows · (P - target) = 0`, `rows` one direction
+/// per unknown (the plane's axes for pairs, the three axes for triples). `weighted` tells
+/// whether the poles' weights differ (the `q = 2` frame then weighs the barycentric
+/// coordinates).
+pub fn solve_unknowns(
+    problem: &LocalProblem,
+    unknowns: &[usize],
+    target: Point,
+    rows: &[Point],
+    weighted: bool,
+) -> Vec<LocalRoot> {
+    let collapse = if unknowns.len() == 3 { TRIPLE_COLLAPSE } else { 0.0 };
+    let Some(search) = problem.search_box(unknowns, SEARCH_MARGIN, collapse) else {
+        return Vec::new();
+    };
+    if search.admissible.iter().any(|(lo, hi)| hi <= lo) {
+        // A knot without room: the set is really a smaller one.
+        return Vec::new();
+    }
+    let raw: Vec<(Vec<f64>, bool)> = match solver_for(problem, unknowns) {
+        Solver::Quadratic => quadratic(problem, unknowns, target, weighted)
+            .into_iter()
+            .map(|k| (k, true))
+            .collect(),
+        Solver::Outermost => outermost(problem, target, rows)
+            .into_iter()
+            .map(|k| (k, true))
+            .collect(),
+        Solver::Subdivision => {
+            let system = problem.system(&search, target, rows);
+            let options = IsolationOptions {
+                max_boxes: if unknowns.len() == 3 { 20_000 } else { 4096 },
+                ..IsolationOptions::default()
+            };
+            isolate(&system, unknowns.len(), options)
+                .roots
+                .into_iter()
+                .map(|root| {
+                    let mut knots = problem.knots_at(&search, root.point);
+                    polish(problem, &search, &mut knots, target, rows);
+                    (knots, root.certified)
+                })
+                .collect()
+        }
+    };
+    let mut roots: Vec<LocalRoot> = Vec::new();
+    for (knots, certified) in raw {
+        let Some(knots) = admissible(problem, &search, knots) else {
+            continue;
+        };
+        let scale = problem.knots[2 * problem.degree + 1] - problem.knots[0];
+        let duplicate = roots.iter().any(|r| {
+            r.knots
+                .iter()
+                .zip(&knots)
+                .all(|(a, b)| (a - b).abs() <= CLAMP_TOLERANCE * scale)
+        });
+        if !duplicate {
+            roots.push(LocalRoot { knots, certified });
+        }
+    }
+    roots
+}
+
+/// The `q = 2` closed forms (the paper's six pairs, docs/method.md §4) on the triangle of
+/// the local poles: the target's frame, then [`solve_pair`].
+fn quadratic(
+    problem: &LocalProblem,
+    unknowns: &[usize],
+    target: Point,
+    weighted: bool,
+) -> Vec<Vec<f64>> {
+    let pair = match unknowns {
+        [1, 2] => KnotPair::Omega1,
+        [2, 3] => KnotPair::Omega2,
+        [3, 4] => KnotPair::Omega3,
+        [1, 3] => KnotPair::Omega4,
+        [1, 4] => KnotPair::Omega5,
+        [2, 4] => KnotPair::Omega6,
+        _ => return Vec::new(),
+    };
+    let poles = &problem.poles;
+    let triangle = [0, 1, 2].map(|i| {
+        let h = poles[i];
+        [h[0] / h[3], h[1] / h[3], h[2] / h[3]]
+    });
+    let weights = weighted.then(|| [0, 1, 2].map(|i| poles[i][3]));
+    let Ok(Some(Frame { x, y })) = triangle_frame(&triangle, weights, Some(target)) else {
+        return Vec::new();
+    };
+    let t = &problem.knots;
+    let local = LocalKnots {
+        l: t[0],
+        a: t[1],
+        b: t[2],
+        t: problem.parameter,
+        c: t[3],
+        e: t[4],
+        r: t[5],
+    };
+    let (solutions, count) = solve_pair(pair, &local, x, y);
+    solutions[..count]
+        .iter()
+        .map(|&[a, b, c, e]| vec![t[0], a, b, c, e, t[5]])
+        .collect()
+}
+
+/// The outermost pair `(t_1, t_{2q})` (docs/method.md §31.3): each enters one ratio only,
+/// `α_A = α_{1,1}` and `α_B = α_{q,1}`, and the homogeneous point is affine in the two
+/// together, `H = H_00 + α_A (H_10 - H_00) + α_B (H_01 - H_00)`, so `rows · (X - p W) = 0` is a
+/// 2 × 2 linear system; then `t_1 = (ũ - α_A t_{q+1}) / (1 - α_A)` and
+/// `t_{2q} = t_q + (ũ - t_q) / α_B`.
+fn outermost(problem: &LocalProblem, target: Point, rows: &[Point]) -> Vec<Vec<f64>> {
+    let q = problem.degree;
+    let u = problem.parameter;
+    let value = |alpha_a: f64, alpha_b: f64| {
+        let h = problem.homogeneous_point_with(&problem.knots, &[((1, 1), alpha_a), ((q, 1), alpha_b)]);
+        [0, 1].map(|i| {
+            let e = rows[i];
+            e[0] * (h[0] - target[0] * h[3])
+                + e[1] * (h[1] - target[1] * h[3])
+                + e[2] * (h[2] - target[2] * h[3])
+        })
+    };
+    let f00 = value(0.0, 0.0);
+    let fa = value(1.0, 0.0);
+    let fb = value(0.0, 1.0);
+    let mut m = [[0.0; MAX_VARIABLES]; MAX_VARIABLES];
+    for i in 0..2 {
+        m[i][0] = fa[i] - f00[i];
+        m[i][1] = fb[i] - f00[i];
+    }
+    let Some(inverse) = invert(&m, 2) else {
+        return Vec::new();
+    };
+    let alpha_a = -(inverse[0][0] * f00[0] + inverse[0][1] * f00[1]);
+    let alpha_b = -(inverse[1][0] * f00[0] + inverse[1][1] * f00[1]);
+    let t = &problem.knots;
+    let first = (u - alpha_a * t[q + 1]) / (1.0 - alpha_a);
+    let last = t[q] + (u - t[q]) / alpha_b;
+    if !(first.is_finite() && last.is_finite()) {
+        return Vec::new();
+    }
+    let mut knots = t.clone();
+    knots[1] = first;
+    knots[2 * q] = last;
+    vec![knots]
+}
+
+/// Newton's method on `rows · (P(knots) - target) = 0` in the unknown knots, from a root of
+/// the polynomial system (a few steps refine it to the accuracy of de Boor itself); a step is
+/// kept only while it lowers the residual, and stays in the widened box.
+fn polish(
+    problem: &LocalProblem,
+    search: &SearchBox,
+    knots: &mut [f64],
+    target: Point,
+    rows: &[Point],
+) {
+    let n = search.unknowns.len();
+    let residual = |point: Point| -> [f64; MAX_VARIABLES] {
+        let d = sub(point, target);
+        let mut r = [0.0; MAX_VARIABLES];
+        for (i, row) in rows.iter().enumerate().take(n) {
+            r[i] = dot(*row, d);
+        }
+        r
+    };
+    let size = |r: &[f64; MAX_VARIABLES]| r.iter().map(|v| v * v).sum::<f64>();
+    let (point, mut partials) = problem.point_and_partials(knots, &search.unknowns);
+    let mut current = residual(point);
+    for _ in 0..POLISH_STEPS {
+        if size(&current) == 0.0 {
+            break;
+        }
+        let mut jacobian = [[0.0; MAX_VARIABLES]; MAX_VARIABLES];
+        for i in 0..n {
+            for k in 0..n {
+                jacobian[i][k] = dot(rows[i], partials[k]);
+            }
+        }
+        let Some(inverse) = invert(&jacobian, n) else {
+            break;
+        };
+        let mut trial = knots.to_vec();
+        for (k, &m) in search.unknowns.iter().enumerate() {
+            let step: f64 = (0..n).map(|i| inverse[k][i] * current[i]).sum();
+            let (lo, hi) = search.admissible[k];
+            let widen = SEARCH_MARGIN * (hi - lo);
+            trial[m] = (knots[m] - step).max(lo - widen).min(hi + widen);
+        }
+        let (point, trial_partials) = problem.point_and_partials(&trial, &search.unknowns);
+        let next = residual(point);
+        if !(size(&next) < size(&current)) {
+            break;
+        }
+        knots.copy_from_slice(&trial);
+        current = next;
+        partials = trial_partials;
+    }
+}
+
+/// The root clamped into the admissible box (a bound missed by at most
+/// [`CLAMP_TOLERANCE`] of the unknown's room is taken as met), unknowns within
+/// [`KNOT_TOLERANCE`] of their old value snapped back to it; `None` when it lies outside, the
+/// knots are not monotone, or `ũ` leaves its (non-empty) span.
+fn admissible(problem: &LocalProblem, search: &SearchBox, mut knots: Vec<f64>) -> Option<Vec<f64>> {
+    let q = problem.degree;
+    let scale = problem.knots[2 * q + 1] - problem.knots[0];
+    for (k, &m) in search.unknowns.iter().enumerate() {
+        let (lo, hi) = search.admissible[k];
+        let slack = CLAMP_TOLERANCE * scale;
+        let value = knots[m];
+        if !value.is_finite() || value < lo - slack || value > hi + slack {
+            return None;
+        }
+        let mut value = value.max(lo).min(hi);
+        if (value - problem.knots[m]).abs() <= KNOT_TOLERANCE * scale {
+            value = problem.knots[m];
+        }
+        knots[m] = value;
+    }
+    // Unknowns next to each other may cross by rounding: within the slack they meet.
+    for w in 1..knots.len() {
+        if knots[w] < knots[w - 1] {
+            if knots[w - 1] - knots[w] <= CLAMP_TOLERANCE * scale && search.unknowns.contains(&w) {
+                knots[w] = knots[w - 1];
+            } else {
+                return None;
+            }
+        }
+    }
+    let u = problem.parameter;
+    (knots[q] <= u && u <= knots[q + 1] && knots[q] < knots[q + 1]).then_some(knots)
+}
