@@ -34,7 +34,9 @@ fn example_cubic() -> Curve {
             [11.5, 2.0],
             [12.0, 0.0],
         ],
-        &[0.0, 0.0, 0.0, 0.0, 0.1, 0.2, 0.35, 0.5, 0.6, 0.7, 0.85, 1.0, 1.0, 1.0, 1.0],
+        &[
+            0.0, 0.0, 0.0, 0.0, 0.1, 0.2, 0.35, 0.5, 0.6, 0.7, 0.85, 1.0, 1.0, 1.0, 1.0,
+        ],
     )
 }
 
@@ -47,7 +49,13 @@ fn only(family: Family) -> FamilyChoice {
 }
 
 /// The solutions of `family` at `t`, each checked by the test's own de Boor.
-fn solutions(curve: &Curve, t: f64, target: [f64; 2], family: Family, side: SideChoice) -> Vec<KnotSolution> {
+fn solutions(
+    curve: &Curve,
+    t: f64,
+    target: [f64; 2],
+    family: Family,
+    side: SideChoice,
+) -> Vec<KnotSolution> {
     let query = ShapeQuery {
         side,
         ..ShapeQuery::new(curve, t)
@@ -74,7 +82,10 @@ fn pair_values(found: &[KnotSolution], knots: [usize; 2]) -> Vec<[f64; 2]> {
 fn assert_close(found: &[[f64; 2]], expected: [f64; 2], tolerance: f64) {
     assert_eq!(found.len(), 1, "{found:?}, expected {expected:?}");
     for k in 0..2 {
-        assert!((found[0][k] - expected[k]).abs() < tolerance, "{found:?} vs {expected:?}");
+        assert!(
+            (found[0][k] - expected[k]).abs() < tolerance,
+            "{found:?} vs {expected:?}"
+        );
     }
 }
 
@@ -118,9 +129,17 @@ fn the_quadratic_direct_pairs_are_the_papers_closed_forms() {
             [11.5, 2.0],
             [12.0, 0.0],
         ],
-        &[0.0, 0.0, 0.0, 0.1, 0.2, 0.3, 0.45, 0.55, 0.65, 0.75, 0.9, 1.0, 1.0, 1.0],
+        &[
+            0.0, 0.0, 0.0, 0.1, 0.2, 0.3, 0.45, 0.55, 0.65, 0.75, 0.9, 1.0, 1.0, 1.0,
+        ],
     );
-    let found = solutions(&quadratic, 0.5, [6.4375, 0.7875], Family::Direct, SideChoice::Both);
+    let found = solutions(
+        &quadratic,
+        0.5,
+        [6.4375, 0.7875],
+        Family::Direct,
+        SideChoice::Both,
+    );
     assert_eq!(found.len(), 3, "{found:#?}");
     assert_close(&pair_values(&found, [5, 6]), [0.382114, 0.465618], 5e-7);
     assert_close(&pair_values(&found, [6, 7]), [0.458936, 0.575093], 5e-7);
@@ -168,9 +187,23 @@ fn the_quintic_envelope_finds_the_planted_outermost_pair_and_three_more() {
     planted[15] -= 0.03;
     let target = de_boor(&quintic, &planted, 0.5).unwrap();
     assert!((target[0] - 8.257504).abs() < 1e-6 && (target[1] - 0.716366).abs() < 1e-6);
-    let found = solutions(&quintic, 0.5, [target[0], target[1]], Family::Envelope, SideChoice::Right);
-    assert!(found.iter().all(|s| s.side == Some(Side::Right) && s.moved_knot == Some(11)));
-    assert_close(&pair_values(&found, [7, 15]), [planted[7], planted[15]], 1e-9);
+    let found = solutions(
+        &quintic,
+        0.5,
+        [target[0], target[1]],
+        Family::Envelope,
+        SideChoice::Right,
+    );
+    assert!(
+        found
+            .iter()
+            .all(|s| s.side == Some(Side::Right) && s.moved_knot == Some(11))
+    );
+    assert_close(
+        &pair_values(&found, [7, 15]),
+        [planted[7], planted[15]],
+        1e-9,
+    );
     assert_close(&pair_values(&found, [10, 12]), [0.45113, 0.643085], 5e-6);
     assert_close(&pair_values(&found, [9, 13]), [0.349794, 0.750593], 5e-6);
     assert_close(&pair_values(&found, [8, 12]), [0.249612, 0.649079], 5e-6);
@@ -200,6 +233,9 @@ fn one_pair_with_three_solutions_has_all_three() {
     ];
     assert_eq!(found.len(), 3, "{found:?}");
     for (f, e) in found.iter().zip(expected) {
-        assert!((f[0] - e[0]).abs() < 2e-9 && (f[1] - e[1]).abs() < 2e-9, "{f:?} vs {e:?}");
+        assert!(
+            (f[0] - e[0]).abs() < 2e-9 && (f[1] - e[1]).abs() < 2e-9,
+            "{f:?} vs {e:?}"
+        );
     }
 }

@@ -9,7 +9,7 @@ use std::fmt;
 use super::candidate::Side;
 use super::constraints::{Breach, ConstraintSet};
 use super::control_points::ControlPointFailure;
-use super::family::{Family, FamilyGroup, KnotSet};
+use super::family::{Family, FamilyGroup, FamilyRegions, KnotSet};
 use super::method::{
     EditContext, EditSolution, MethodFailure, MethodKind, MethodMembership, MethodNearest,
     Reachable, RegionKey, WeightRegion,
@@ -477,6 +477,8 @@ pub struct ReachableRegions {
     /// The knot pairs' candidates with their regions, cut to what `keep_domain` allows (empty
     /// unless the knot method is requested).
     pub candidates: Vec<CandidateRegions>,
+    /// Every requested knot family's regions (empty unless the knot method is requested).
+    pub families: Vec<FamilyRegions>,
     /// The weight pairs' quadrilaterals, when the weight method is requested (pairs with a
     /// fixed pole left out).
     pub weight_regions: Vec<WeightRegion>,
@@ -496,12 +498,19 @@ pub fn reachable_regions(
     validate(edit, methods)?;
     let mut regions = ReachableRegions {
         candidates: Vec::new(),
+        families: Vec::new(),
         weight_regions: Vec::new(),
     };
     for &kind in methods {
         match kind.method().reachable(edit, options) {
             Reachable::Everywhere => {}
-            Reachable::KnotRegions(candidates) => regions.candidates = candidates,
+            Reachable::KnotRegions {
+                candidates,
+                families,
+            } => {
+                regions.candidates = candidates;
+                regions.families = families;
+            }
             Reachable::WeightRegions(weight_regions) => regions.weight_regions = weight_regions,
         }
     }

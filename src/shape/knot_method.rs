@@ -1,13 +1,14 @@
 //! The knot method behind the edit's interface ([`EditMethod`]): every requested knot family
 //! ([`super::family`]) on curves of degree 2 and more.
 
+use super::family::family_regions;
 use super::family::{KnotSolution, solve_families};
 use super::method::{
     EditContext, EditMethod, EditSolution, MethodKind, MethodMembership, MethodNearest,
     MethodSolutions, Reachable, SolutionDetail,
 };
 use super::nearest::nearest_reachable;
-use super::regions::{PolygonOptions, region_polygons};
+use super::regions::PolygonOptions;
 use super::solve::{ShapeError, Solution, affected_domain};
 use crate::spline::Curve;
 use crate::spline::vector::Point;
@@ -91,33 +92,43 @@ impl EditMethod for KnotPairs {
         }
     }
 
-    /// The regions of the pairs whose edits surely keep the constraints: a knot-pair edit
-    /// changes the moved knot and the pair's two, so the curve only on
-    /// `[u_{qmin-3}, u_{qmax+3}]` (the whole domain when one of them is an end of it).
+    /// The regions of the pairs whose edits surely keep the constraints: a knot edit changes
+    /// the envelope's moved knot and the pair's, so the curve only on
+    /// `[u_{qmin-p}, u_{qmax+p}]` (the whole domain when one of them is an end of it).
     fn reachable(&self, edit: &EditContext, options: PolygonOptions) -> Reachable {
-        if edit.query.curve.degree() != 3 {
-            return Reachable::KnotRegions(Vec::new());
-        }
-        let mut candidates = region_polygons(&edit.query, options).unwrap_or_default();
+        let (mut candidates, mut families) =
+            family_regions(&edit.query, edit.query.families, options);
         if !edit.constraints.is_empty() {
             let curve = edit.query.curve;
-            let p = curve.degree();
-            let n = curve.control_points().len() - 1;
+            let keeps = |moved: Option<usize>, knots: &[usize]| {
+                let p = curve.degree();
+                let n = curve.control_points().len() - 1;
+                let all = moved.into_iter().chain(knots.iter().copied());
+                let (qmin, qmax) = all.fold((usize::MAX, 0), |(lo, hi), k| (lo.min(k), hi.max(k)));
+                let affected = if qmin <= p || qmax > n {
+                    (f64::NEG_INFINITY, f64::INFINITY)
+                } else {
+                    affected_domain(curve, curve.knots(), &[qmin, qmax])
+                };
+                edit.constraints.surely_kept_outside(curve, affected)
+            };
             for entry in &mut candidates {
                 let moved = entry.candidate.moved_knot;
-                entry.regions.retain(|region| {
-                    let qmin = moved.min(region.knots[0]).min(region.knots[1]);
-                    let qmax = moved.max(region.knots[0]).max(region.knots[1]);
-                    let affected = if qmin <= p || qmax > n {
-                        (f64::NEG_INFINITY, f64::INFINITY)
-                    } else {
-                        affected_domain(curve, curve.knots(), &[qmin, qmax])
-                    };
-                    edit.constraints.surely_kept_outside(curve, affected)
-                });
+                entry
+                    .regions
+                    .retain(|region| keeps(Some(moved), &region.knots));
+            }
+            for family in &mut families {
+                let moved = family.problem.moved_knot;
+                family
+                    .regions
+                    .retain(|region| keeps(moved, region.knots.indices()));
             }
         }
-        Reachable::KnotRegions(candidates)
+        Reachable::KnotRegions {
+            candidates,
+            families,
+        }
     }
 
     fn nearest(&self, edit: &EditContext, target: Point) -> Option<MethodNearest> {

@@ -8,7 +8,7 @@ use super::candidate::Side;
 use super::constraints::{ConstraintSet, FixedPoles};
 use super::control_points::{ControlPointFailure, PoleVariables};
 use super::deviation::max_deviation_of_moved_poles;
-use super::family::{Family, FamilyGroup, KnotSet};
+use super::family::{Family, FamilyGroup, FamilyRegions, KnotSet};
 use super::pairs::KnotPair;
 use super::regions::{CandidateRegions, PolygonOptions};
 use super::solve::{CandidateOutcome, ShapeError, ShapeQuery};
@@ -222,8 +222,14 @@ pub struct WeightRegion {
 pub enum Reachable {
     /// Every target (the control-point move, when its system is solvable).
     Everywhere,
-    /// The knot pairs' regions of each requested side (with `keep_domain` applied).
-    KnotRegions(Vec<CandidateRegions>),
+    /// The knot families' regions (with `keep_domain` applied): a cubic's envelope
+    /// candidates in their original form, and every family's pairs.
+    KnotRegions {
+        /// The cubic's envelope candidates (empty on other degrees).
+        candidates: Vec<CandidateRegions>,
+        /// Every requested family.
+        families: Vec<FamilyRegions>,
+    },
     /// Each weight pair's quadrilateral.
     WeightRegions(Vec<WeightRegion>),
 }

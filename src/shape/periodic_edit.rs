@@ -28,11 +28,11 @@
 
 use super::constraints::{ConstraintSet, FixedPoles};
 use super::control_points::PoleVariables;
-use super::family::{Family, KnotSet};
 use super::edit::{
     EditOptions, EditOutcome, Exclusion, ExclusionReason, ReachableRegions, WeightPairMembership,
     edit, reachable_regions,
 };
+use super::family::{Family, KnotSet};
 use super::method::{EditContext, EditSolution, MethodKind, RegionKey, SolutionDetail};
 use super::regions::PolygonOptions;
 use super::solve::{ShapeError, ShapeQuery};
@@ -379,6 +379,13 @@ pub(super) fn reachable_regions_periodic(
             entry.candidate.moved_knot = window.knot(entry.candidate.moved_knot);
             for region in &mut entry.regions {
                 region.knots = region.knots.map(|i| window.knot(i));
+            }
+        }
+        for family in &mut regions.families {
+            family.problem.span = window.knot(family.problem.span);
+            family.problem.moved_knot = family.problem.moved_knot.map(|i| window.knot(i));
+            for region in &mut family.regions {
+                region.knots = window.knot_set(region.knots);
             }
         }
         for region in &mut regions.weight_regions {

@@ -10,8 +10,8 @@ use crate::http::error::FieldError;
 use crate::http::pointer::JsonPointer;
 use crate::http::wire::shape_answer::caller_knot_index;
 use crate::http::wire::shape_request::CandidateSide;
-use crate::shape::family::{Family, FamilyChoice, FamilyGroup, KnotSet};
 use crate::shape::KnotPair;
+use crate::shape::family::{Family, FamilyChoice, FamilyGroup, FamilyRegions, KnotSet};
 use crate::spline::Curve;
 
 /// A knot family.
@@ -59,7 +59,10 @@ pub fn parse_families(names: Option<&[String]>, errors: &mut Vec<FieldError>) ->
                 format!("unknown knot family {name:?}: the families are \"envelope\", \"direct\" and \"triples\""),
             ));
         } else if names[..index].contains(name) {
-            errors.push(FieldError::new(pointer, format!("knot family {name:?} is listed twice")));
+            errors.push(FieldError::new(
+                pointer,
+                format!("knot family {name:?} is listed twice"),
+            ));
         }
     }
     FamilyChoice::from_names(names.iter().map(String::as_str)).unwrap_or_default()
@@ -68,7 +71,12 @@ pub fn parse_families(names: Option<&[String]>, errors: &mut Vec<FieldError>) ->
 /// The region label of a pair or triple: `"omega1"` … `"omega6"` for a cubic's envelope
 /// pairs, otherwise `"<family>:<a>,<b>"` (or `<a>,<b>,<c>`) with the knots' indices in the
 /// caller's convention.
-pub fn region_label(curve: &Curve, family: Family, omega: Option<KnotPair>, knots: &KnotSet) -> String {
+pub fn region_label(
+    curve: &Curve,
+    family: Family,
+    omega: Option<KnotPair>,
+    knots: &KnotSet,
+) -> String {
     if let Some(pair) = omega {
         return pair.name().to_string();
     }
@@ -160,4 +168,136 @@ pub fn family_memberships(curve: &Curve, groups: &[FamilyGroup]) -> Vec<FamilyMe
             }
         })
         .collect()
+}
+
+/// One pair's region: the targets it reaches, as closed rings.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
+#[schema(example = json!({"region": "direct:5,7", "knots": [5, 7],
+    "polygon": [[5.9, 1.2], [6.1, 1.2], [6.0, 1.4], [5.9, 1.2]],
+    "polygons": [[[5.9, 1.2], [6.1, 1.2], [6.0, 1.4], [5.9, 1.2]]], "folded": false, "tolerance_met": true}))]
+pub struct FamilyRegionBody {
+    /// The region label, as in solve.
+    #[schema(example = "direct:5,7")]
+    pub region: String,
+    /// Indices (caller's convention) of the pair's knots.
+    pub knots: Vec<usize>,
+    /// The outline of the largest part (first vertex repeated last), in the curve's
+    /// coordinates.
+    #[schema(value_type = Vec<Vec<f64>>)]
+    pub polygon: Vec<WirePoint>,
+    /// Every ring of the region (first vertex repeated last): outer rings counter-clockwise
+    /// in the plane, each followed by its holes, clockwise. The region is what they enclose
+    /// (non-zero winding).
+    #[schema(value_type = Vec<Vec<Vec<f64>>>)]
+    pub polygons: Vec<Vec<WirePoint>>,
+    /// Whether the pair's map folds here: its region's outline then also follows the images
+    /// of fold curves, and some targets have several solutions.
+    pub folded: bool,
+    /// Whether the outline is within `tolerance` of the true one everywhere.
+    pub tolerance_met: bool,
+    /// A cubic's envelope pairs: the polygon in frame coordinates `[x, y]`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub polygon_frame: Option<Vec<[f64; 2]>>,
+}
+
+/// One knot family (one side of the envelope) with its pairs' regions.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
+#[schema(example = json!({"family": "direct", "applicable": true, "span": 5,
+    "control_points": [[1, 3], [3, 4], [5, 3.5], [6, 1]],
+    "regions": [{"region": "direct:5,7", "knots": [5, 7],
+        "polygon": [[5.9, 1.2], [6.1, 1.2], [6.0, 1.4], [5.9, 1.2]],
+        "polygons": [[[5.9, 1.2], [6.1, 1.2], [6.0, 1.4], [5.9, 1.2]]], "folded": false, "tolerance_met": true}]}))]
+pub struct FamilyRegionsBody {
+    /// The family.
+    pub family: KnotFamily,
+    /// The envelope's side.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub side: Option<CandidateSide>,
+    /// Whether regions are drawn; when not, `reason` says why (a family that does not apply,
+    /// triples, or control points off one plane).
+    pub applicable: bool,
+    /// Why not.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub reason: Option<String>,
+    /// The span `j` (as in membership).
+    pub span: usize,
+    /// Index (caller's convention) of the envelope's knot set to `t`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub moved_knot: Option<usize>,
+    /// The control points acting.
+    #[schema(value_type = Vec<Vec<f64>>)]
+    pub control_points: Vec<WirePoint>,
+    /// One entry per pair drawn.
+    pub regions: Vec<FamilyRegionBody>,
+}
+
+/// The wire form of the families' regions.
+pub fn family_regions_bodies(curve: &Curve, families: &[FamilyRegions]) -> Vec<FamilyRegionsBody> {
+    let dimension = curve.dimension();
+    let ring = |points: &[crate::spline::vector::Point]| -> Vec<WirePoint> {
+        points
+            .iter()
+            .map(|&p| point_to_wire(p, dimension))
+            .collect()
+    };
+    families
+        .iter()
+        .map(|family| {
+            let problem = &family.problem;
+            FamilyRegionsBody {
+                family: problem.family.into(),
+                side: problem.side.map(Into::into),
+                applicable: family.reason.is_none(),
+                reason: family.reason.clone(),
+                span: problem.span,
+                moved_knot: problem.moved_knot.map(|i| caller_knot_index(curve, i)),
+                control_points: ring(&problem.control_points()),
+                regions: family
+                    .regions
+                    .iter()
+                    .map(|region| {
+                        let largest = region
+                            .outline
+                            .rings
+                            .iter()
+                            .max_by(|a, b| ring_area(a).total_cmp(&ring_area(b)))
+                            .cloned()
+                            .unwrap_or_default();
+                        FamilyRegionBody {
+                            region: region_label(
+                                curve,
+                                problem.family,
+                                region.omega,
+                                &region.knots,
+                            ),
+                            knots: region
+                                .knots
+                                .indices()
+                                .iter()
+                                .map(|&i| caller_knot_index(curve, i))
+                                .collect(),
+                            polygon: ring(&largest),
+                            polygons: region.outline.rings.iter().map(|r| ring(r)).collect(),
+                            folded: region.outline.folded,
+                            tolerance_met: region.outline.tolerance_met,
+                            polygon_frame: region.polygon_frame.clone(),
+                        }
+                    })
+                    .collect(),
+            }
+        })
+        .collect()
+}
+
+/// The area a closed ring encloses (its shoelace magnitude, over the plane it spans: the
+/// length of the summed cross products).
+fn ring_area(ring: &[crate::spline::vector::Point]) -> f64 {
+    let mut sum = [0.0; 3];
+    for w in ring.windows(2) {
+        let c = crate::spline::vector::cross(w[0], w[1]);
+        for k in 0..3 {
+            sum[k] += c[k];
+        }
+    }
+    0.5 * crate::spline::vector::norm(sum)
 }

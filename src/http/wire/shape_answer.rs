@@ -8,7 +8,7 @@ use utoipa::ToSchema;
 use crate::http::curve::{WirePoint, point_to_wire};
 use crate::http::error::ApiError;
 use crate::http::pointer::JsonPointer;
-use crate::http::wire::families::FamilyMembershipBody;
+use crate::http::wire::families::{FamilyMembershipBody, FamilyRegionsBody, family_regions_bodies};
 use crate::http::wire::methods::{ControlPointMembershipBody, ExclusionBody, WeightMembershipBody};
 use crate::http::wire::shape_request::{CandidateSide, Region};
 use crate::http::wire::solutions::SolutionBody;
@@ -194,8 +194,12 @@ pub struct RegionsCandidate {
      "polygon_frame": [[0.0, 0.56], [0.1936, 0.3136], [0.44, 0.0], [0.0, 0.0], [0.0, 0.56]],
      "tolerance_met": true}]}], "weight_regions": []}))]
 pub struct RegionsResponse {
-    /// One entry per requested side, when `methods` holds `knots` (else empty).
+    /// A cubic's envelope candidates, one per requested side, when `methods` holds `knots`
+    /// (else empty).
     pub candidates: Vec<RegionsCandidate>,
+    /// Every requested knot family (and envelope side) with its pairs' regions, when
+    /// `methods` holds `knots` (else empty); a cubic's envelope is here too.
+    pub families: Vec<FamilyRegionsBody>,
     /// Each weight pair's reachable quadrilateral, when `methods` holds `weights` (pairs with
     /// a fixed pole left out).
     pub weight_regions: Vec<WeightRegionBody>,
@@ -331,6 +335,7 @@ pub fn regions_response(curve: &Curve, reachable: ReachableRegions) -> RegionsRe
     let dimension = curve.dimension();
     let candidates: Vec<CandidateRegions> = reachable.candidates;
     RegionsResponse {
+        families: family_regions_bodies(curve, &reachable.families),
         weight_regions: reachable
             .weight_regions
             .iter()

@@ -9,8 +9,8 @@ use crate::http::curve::CurveBody;
 use crate::http::error::{ApiError, FieldError};
 use crate::http::pointer::JsonPointer;
 use crate::http::wire::constraints::{ConstraintBody, parse_constraints, parse_fixed};
-use crate::http::wire::methods::{Method, Methods};
 use crate::http::wire::families::{KnotFamily, parse_families};
+use crate::http::wire::methods::{Method, Methods};
 use crate::shape::family::FamilyChoice;
 use crate::shape::{
     ConstraintSet, EditContext, FixedPoles, KnotPair, PoleVariables, ShapeError, ShapeQuery,
@@ -303,7 +303,10 @@ impl ParsedShape {
     ) -> Result<ParsedShape, ApiError> {
         let methods = Methods::parse(methods)?;
         if methods.knots() && curve.degree < 2 {
-            return Err(ApiError::invalid("/curve/degree", ShapeError::DegreeOne.to_string()));
+            return Err(ApiError::invalid(
+                "/curve/degree",
+                ShapeError::DegreeOne.to_string(),
+            ));
         }
         let mut errors = Vec::new();
         let families = parse_families(knot_families, &mut errors);

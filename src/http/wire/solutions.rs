@@ -6,8 +6,8 @@ use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
 use crate::http::curve::{WirePoint, point_to_wire};
-use crate::http::wire::shape_answer::caller_knot_index;
 use crate::http::wire::families::{KnotFamily, region_label};
+use crate::http::wire::shape_answer::caller_knot_index;
 use crate::http::wire::shape_request::CandidateSide;
 use crate::shape::{EditSolution, SolutionDetail};
 use crate::spline::Curve;

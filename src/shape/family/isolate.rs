@@ -25,8 +25,9 @@ pub const ZERO_MARGIN: f64 = 1e-12;
 /// where no box could certify them.
 const CUT: f64 = 0.4921875;
 
-/// Simplified Newton steps at most inside a certified box.
-const NEWTON_STEPS: usize = 60;
+#[cfg(test)]
+/// Newton steps at most in [`refine`].
+const NEWTON_STEPS: usize = 12;
 
 /// Limits of one isolation.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -91,13 +92,18 @@ impl Interval {
 }
 
 /// The isolating roots of `system` (components = `variables` = `N`) in the unit box.
-pub fn isolate(system: &Tensor, variables: usize, options: IsolationOptions) -> Isolation {
+/// `outside(lo, width)` says that a box (corner and widths in unit-box coordinates) lies
+/// wholly outside the set of interest (the admissible knots): it is dropped untested.
+pub fn isolate(
+    system: &Tensor,
+    variables: usize,
+    options: IsolationOptions,
+    outside: &dyn Fn([f64; MAX_VARIABLES], [f64; MAX_VARIABLES]) -> bool,
+) -> Isolation {
     debug_assert_eq!(system.components, variables);
     debug_assert!((1..=MAX_VARIABLES).contains(&variables));
     let n = variables;
-    let margin: Vec<f64> = (0..n)
-        .map(|i| ZERO_MARGIN * system.magnitude(i))
-        .collect();
+    let margin: Vec<f64> = (0..n).map(|i| ZERO_MARGIN * system.magnitude(i)).collect();
     let mut isolation = Isolation::default();
     let mut candidates: Vec<(f64, IsolatedRoot)> = Vec::new();
     let mut stack = vec![Cell {
@@ -113,16 +119,19 @@ pub fn isolate(system: &Tensor, variables: usize, options: IsolationOptions) -> 
             continue;
         }
         isolation.boxes += 1;
-        if excluded(&cell.system, n, &margin) {
+        if outside(cell.lo, cell.width) || excluded(&cell.system, n, &margin) {
             continue;
         }
-        match krawczyk(&cell.system, n, &margin) {
+        let jacobian = jacobian_ranges(&cell.system, n, &margin);
+        let y = invert(&middle(&jacobian, n), n);
+        match y.map_or(Test::Undecided, |y| {
+            krawczyk(&cell.system, n, &margin, &jacobian, y)
+        }) {
             Test::NoRoot => continue,
-            Test::UniqueRoot { y } => {
-                let local = newton_in_cell(&cell.system, n, &y);
+            Test::UniqueRoot => {
                 let mut point = [0.0; MAX_VARIABLES];
                 for k in 0..n {
-                    point[k] = cell.lo[k] + local[k] * cell.width[k];
+                    point[k] = cell.lo[k] + 0.5 * cell.width[k];
                 }
                 isolation.roots.push(IsolatedRoot {
                     point,
@@ -131,6 +140,23 @@ pub fn isolate(system: &Tensor, variables: usize, options: IsolationOptions) -> 
                 continue;
             }
             Test::Undecided => {}
+        }
+        if let Some(y) = &y {
+            // Preconditioned by the inverse Jacobian, each component is nearly one variable
+            // minus the root's coordinate: its coefficients bound the root far more tightly.
+            let (preconditioned, bounds) = precondition(&cell.system, y, n, &margin);
+            if excluded(&preconditioned, n, &bounds) {
+                continue;
+            }
+            let Some(interval) = clip(&preconditioned, n, &bounds) else {
+                continue;
+            };
+            if (0..n).all(|k| cell.width[k] > options.min_width) {
+                if let Some(reduced) = reduce(&cell, n, &interval) {
+                    stack.push(reduced);
+                    continue;
+                }
+            }
         }
         // Halve across the widest side whose variable F depends on.
         let split = (0..n)
@@ -197,36 +223,170 @@ fn excluded(system: &Tensor, n: usize, margin: &[f64]) -> bool {
 enum Test {
     /// `K ∩ X = ∅`.
     NoRoot,
-    /// `K ⊂ int X`, with the preconditioner `Y`.
-    UniqueRoot { y: [[f64; MAX_VARIABLES]; MAX_VARIABLES] },
+    /// `K ⊂ int X`.
+    UniqueRoot,
     /// Neither.
     Undecided,
 }
 
-/// Krawczyk's test on the cell's own unit box (module docs).
-fn krawczyk(system: &Tensor, n: usize, margin: &[f64]) -> Test {
-    // [J]_{ik}: the range of ∂F_i/∂s_k, widened by the coefficients' rounding.
+/// `[J]_{ik}`: the range of `∂F_i/∂s_k` on the cell (from the coefficients of the partial
+/// derivatives), widened by the coefficients' rounding.
+fn jacobian_ranges(
+    system: &Tensor,
+    n: usize,
+    margin: &[f64],
+) -> [[Interval; MAX_VARIABLES]; MAX_VARIABLES] {
     let mut jacobian = [[Interval { lo: 0.0, hi: 0.0 }; MAX_VARIABLES]; MAX_VARIABLES];
+    let mut ranges = [(0.0, 0.0); MAX_VARIABLES];
     for k in 0..n {
-        let derivative = system.derivative(k);
+        system.derivative_ranges(k, &mut ranges);
         let slack = 2.0 * system.degrees[k] as f64;
         for (i, row) in jacobian.iter_mut().enumerate().take(n) {
-            let (lo, hi) = derivative.range(i);
+            let (lo, hi) = ranges[i];
             row[k] = Interval {
                 lo: lo - slack * margin[i],
                 hi: hi + slack * margin[i],
             };
         }
     }
+    jacobian
+}
+
+/// The midpoint matrix of an interval matrix.
+fn middle(
+    jacobian: &[[Interval; MAX_VARIABLES]; MAX_VARIABLES],
+    n: usize,
+) -> [[f64; MAX_VARIABLES]; MAX_VARIABLES] {
     let mut middle = [[0.0; MAX_VARIABLES]; MAX_VARIABLES];
     for i in 0..n {
         for k in 0..n {
             middle[i][k] = 0.5 * (jacobian[i][k].lo + jacobian[i][k].hi);
         }
     }
-    let Some(y) = invert(&middle, n) else {
-        return Test::Undecided;
-    };
+    middle
+}
+
+/// `G = Y F`, coefficient by coefficient (the same roots), with the rounding margins of its
+/// components.
+fn precondition(
+    system: &Tensor,
+    y: &[[f64; MAX_VARIABLES]; MAX_VARIABLES],
+    n: usize,
+    margin: &[f64],
+) -> (Tensor, [f64; MAX_VARIABLES]) {
+    let mut out = system.clone();
+    for (values, original) in out
+        .coefficients
+        .chunks_exact_mut(n)
+        .zip(system.coefficients.chunks_exact(n))
+    {
+        for i in 0..n {
+            values[i] = (0..n).map(|l| y[i][l] * original[l]).sum();
+        }
+    }
+    let mut bounds = [0.0; MAX_VARIABLES];
+    for i in 0..n {
+        bounds[i] = (0..n).map(|l| y[i][l].abs() * margin[l]).sum::<f64>() * (1.0 + 1e-12);
+    }
+    (out, bounds)
+}
+
+/// Per variable, the part `[a, b]` of the cell's unit interval where every component's
+/// control net can cross zero (the convex hull of the points `(j / d, c_j)` of all its
+/// coefficients with index `j` along the variable, widened by the margin); `None` when a
+/// component's net cannot cross zero anywhere.
+fn clip(system: &Tensor, n: usize, margin: &[f64]) -> Option<[(f64, f64); MAX_VARIABLES]> {
+    let mut interval = [(0.0f64, 1.0f64); MAX_VARIABLES];
+    let e = system.degrees.map(|d| d + 1);
+    let stride = [1, e[0], e[0] * e[1]];
+    for k in 0..n {
+        let d = system.degrees[k];
+        if d == 0 {
+            continue;
+        }
+        for i in 0..n {
+            // Lowest and highest coefficient per index along k.
+            let mut low = [f64::INFINITY; 64];
+            let mut high = [f64::NEG_INFINITY; 64];
+            if d >= 64 {
+                continue;
+            }
+            for i2 in 0..e[2] {
+                for i1 in 0..e[1] {
+                    for i0 in 0..e[0] {
+                        let j = [i0, i1, i2][k];
+                        let v = system.coefficients[(i0 + i1 * stride[1] + i2 * stride[2]) * n + i];
+                        low[j] = low[j].min(v);
+                        high[j] = high[j].max(v);
+                    }
+                }
+            }
+            let (mut a, mut b) = (f64::INFINITY, f64::NEG_INFINITY);
+            let x = |j: usize| j as f64 / d as f64;
+            for j in 0..=d {
+                let (lo, hi) = (low[j] - margin[i], high[j] + margin[i]);
+                if lo <= 0.0 && hi >= 0.0 {
+                    a = a.min(x(j));
+                    b = b.max(x(j));
+                }
+                // Segments from a point below zero to a point above it cross zero.
+                for l in j + 1..=d {
+                    let (lo_l, hi_l) = (low[l] - margin[i], high[l] + margin[i]);
+                    for (y0, y1) in [(lo, lo_l), (lo, hi_l), (hi, lo_l), (hi, hi_l)] {
+                        if (y0 < 0.0 && y1 > 0.0) || (y0 > 0.0 && y1 < 0.0) {
+                            let crossing = x(j) + (x(l) - x(j)) * y0 / (y0 - y1);
+                            a = a.min(crossing);
+                            b = b.max(crossing);
+                        }
+                    }
+                }
+            }
+            if a > b {
+                return None;
+            }
+            let (lo, hi) = interval[k];
+            interval[k] = (lo.max(a.max(0.0)), hi.min(b.min(1.0)));
+            if interval[k].0 > interval[k].1 {
+                return None;
+            }
+        }
+    }
+    Some(interval)
+}
+
+/// The cell cut down to `interval` (local coordinates per variable), when that removes at
+/// least a quarter of some side; `None` otherwise (the cell is tested and halved instead).
+fn reduce(cell: &Cell, n: usize, interval: &[(f64, f64); MAX_VARIABLES]) -> Option<Cell> {
+    let worth = (0..n).any(|k| interval[k].1 - interval[k].0 <= 0.75);
+    if !worth {
+        return None;
+    }
+    let mut system = cell.system.clone();
+    let mut lo = cell.lo;
+    let mut width = cell.width;
+    for k in 0..n {
+        let (a, b) = interval[k];
+        if b - a > 0.75 || cell.system.degrees[k] == 0 {
+            continue;
+        }
+        // Widen a little: the cut's rounding must not lose a root on its edge.
+        let (a, b) = ((a - 1e-9).max(0.0), (b + 1e-9).min(1.0));
+        system = system.part(k, a, b);
+        lo[k] += a * width[k];
+        width[k] *= b - a;
+    }
+    Some(Cell { lo, width, system })
+}
+
+/// Krawczyk's test on the cell's own unit box (module docs), with the interval Jacobian and
+/// its preconditioner `y`.
+fn krawczyk(
+    system: &Tensor,
+    n: usize,
+    margin: &[f64],
+    jacobian: &[[Interval; MAX_VARIABLES]; MAX_VARIABLES],
+    y: [[f64; MAX_VARIABLES]; MAX_VARIABLES],
+) -> Test {
     let mut value = [0.0; MAX_VARIABLES];
     system.evaluate([0.5; MAX_VARIABLES], &mut value);
     let mut inside = true;
@@ -268,34 +428,47 @@ fn krawczyk(system: &Tensor, n: usize, margin: &[f64]) -> Test {
         }
     }
     if inside {
-        Test::UniqueRoot { y }
+        Test::UniqueRoot
     } else {
         Test::Undecided
     }
 }
 
-/// Simplified Newton `x ← x - Y F(x)` from the centre of a certified box (Krawczyk's
-/// contraction makes it converge), kept in the box.
-fn newton_in_cell(
-    system: &Tensor,
-    n: usize,
-    y: &[[f64; MAX_VARIABLES]; MAX_VARIABLES],
-) -> [f64; MAX_VARIABLES] {
-    let mut x = [0.5; MAX_VARIABLES];
+/// Newton's method on the polynomial system itself from `start` (unit-box coordinates),
+/// kept in the unit box; a step that fails to lower the residual ends it. The knot solvers
+/// refine on de Boor instead ([`super::roots`]); this serves where the system is all there
+/// is.
+#[cfg(test)]
+pub fn refine(system: &Tensor, n: usize, start: [f64; MAX_VARIABLES]) -> [f64; MAX_VARIABLES] {
+    let derivatives: Vec<Tensor> = (0..n).map(|k| system.derivative(k)).collect();
+    let size = |v: &[f64; MAX_VARIABLES]| v[..n].iter().map(|x| x * x).sum::<f64>();
+    let mut x = start;
     let mut value = [0.0; MAX_VARIABLES];
+    system.evaluate(x, &mut value);
     for _ in 0..NEWTON_STEPS {
-        system.evaluate(x, &mut value);
-        let mut largest = 0.0f64;
+        let mut jacobian = [[0.0; MAX_VARIABLES]; MAX_VARIABLES];
+        let mut column = [0.0; MAX_VARIABLES];
+        for (k, derivative) in derivatives.iter().enumerate() {
+            derivative.evaluate(x, &mut column);
+            for i in 0..n {
+                jacobian[i][k] = column[i];
+            }
+        }
+        let Some(inverse) = invert(&jacobian, n) else {
+            break;
+        };
         let mut next = x;
         for i in 0..n {
-            let step: f64 = (0..n).map(|l| y[i][l] * value[l]).sum();
+            let step: f64 = (0..n).map(|l| inverse[i][l] * value[l]).sum();
             next[i] = (x[i] - step).clamp(0.0, 1.0);
-            largest = largest.max((next[i] - x[i]).abs());
         }
-        x = next;
-        if largest <= 4.0 * f64::EPSILON {
+        let mut next_value = [0.0; MAX_VARIABLES];
+        system.evaluate(next, &mut next_value);
+        if !(size(&next_value) < size(&value)) {
             break;
         }
+        x = next;
+        value = next_value;
     }
     x
 }
@@ -312,7 +485,8 @@ pub fn invert(
         row[i] = 1.0;
     }
     for column in 0..n {
-        let pivot = (column..n).max_by(|&r, &s| a[r][column].abs().total_cmp(&a[s][column].abs()))?;
+        let pivot =
+            (column..n).max_by(|&r, &s| a[r][column].abs().total_cmp(&a[s][column].abs()))?;
         if a[pivot][column] == 0.0 {
             return None;
         }
@@ -362,11 +536,12 @@ mod tests {
             .plus(&Tensor::constant(&[-0.5]));
         let line = x.plus(&y.times(&Tensor::constant(&[-1.0])));
         let system = Tensor::stack(&[circle.unscaled(), line.raised_to([2, 2, 0]).unscaled()]);
-        let found = isolate(&system, 2, IsolationOptions::default());
+        let found = isolate(&system, 2, IsolationOptions::default(), &|_, _| false);
         let certified: Vec<_> = found.roots.iter().filter(|r| r.certified).collect();
         assert_eq!(certified.len(), 1, "{found:?}");
-        assert!((certified[0].point[0] - 0.5).abs() < 1e-14);
-        assert!((certified[0].point[1] - 0.5).abs() < 1e-14);
+        let root = refine(&system, 2, certified[0].point);
+        assert!((root[0] - 0.5).abs() < 1e-14);
+        assert!((root[1] - 0.5).abs() < 1e-14);
         assert!(!found.exhausted);
     }
 
@@ -374,9 +549,16 @@ mod tests {
     #[test]
     fn a_univariate_cubic_has_its_three_roots() {
         let factor = |r: f64| linear(0, -r, 1.0 - r);
-        let f = factor(0.1).times(&factor(0.5)).times(&factor(0.9)).unscaled();
-        let found = isolate(&f, 1, IsolationOptions::default());
-        let mut roots: Vec<f64> = found.roots.iter().map(|r| r.point[0]).collect();
+        let f = factor(0.1)
+            .times(&factor(0.5))
+            .times(&factor(0.9))
+            .unscaled();
+        let found = isolate(&f, 1, IsolationOptions::default(), &|_, _| false);
+        let mut roots: Vec<f64> = found
+            .roots
+            .iter()
+            .map(|r| refine(&f, 1, r.point)[0])
+            .collect();
         roots.sort_by(f64::total_cmp);
         assert_eq!(roots.len(), 3, "{found:?}");
         for (root, expected) in roots.iter().zip([0.1, 0.5, 0.9]) {
@@ -398,12 +580,16 @@ mod tests {
         let f2 = y.plus(&z.times(&z)).plus(&minus(0.46)).raised_to([1, 1, 2]);
         let f3 = x.plus(&y).plus(&z).plus(&minus(0.9)).raised_to([1, 1, 2]);
         let system = Tensor::stack(&[f1.unscaled(), f2.unscaled(), f3.unscaled()]);
-        let found = isolate(&system, 3, IsolationOptions::default());
-        let near = found.roots.iter().filter(|r| {
-            (r.point[0] - 0.2).abs() < 1e-12
-                && (r.point[1] - 0.3).abs() < 1e-12
-                && (r.point[2] - 0.4).abs() < 1e-12
-        });
+        let found = isolate(&system, 3, IsolationOptions::default(), &|_, _| false);
+        let near = found
+            .roots
+            .iter()
+            .map(|r| refine(&system, 3, r.point))
+            .filter(|r| {
+                (r[0] - 0.2).abs() < 1e-12
+                    && (r[1] - 0.3).abs() < 1e-12
+                    && (r[2] - 0.4).abs() < 1e-12
+            });
         assert_eq!(near.count(), 1, "{found:?}");
     }
 

@@ -20,8 +20,78 @@
 //! the span length `σ = t_{q+1} - t_q` and the last ratio `λ = α_{q,q} = (ũ - t_q) / σ` (a
 //! blow-up of that corner), whose denominator `σ` is divided out.
 
+use smallvec::SmallVec;
+
 use super::tensor::{MAX_VARIABLES, Tensor};
 use crate::spline::vector::Point;
+
+/// Largest degree per variable at which [`LocalProblem::numerator`] interpolates (the
+/// collocation matrices at Chebyshev–Lobatto nodes stay well conditioned: their inverses'
+/// norms stay below 100 up to here); above it, Bernstein arithmetic.
+pub const INTERPOLATION_DEGREE: usize = 9;
+
+/// `n + 1` Chebyshev–Lobatto nodes on `[0, 1]` (one node, `1/2`, for `n = 0`).
+fn lobatto_nodes(n: usize) -> Vec<f64> {
+    if n == 0 {
+        return vec![0.5];
+    }
+    (0..=n)
+        .map(|i| 0.5 * (1.0 - (std::f64::consts::PI * i as f64 / n as f64).cos()))
+        .collect()
+}
+
+/// The inverse of the Bernstein collocation matrix `V_ij = B_j^n(s_i)` at the Lobatto nodes
+/// of degree `n` (row-major), computed once per degree.
+fn collocation_inverse(n: usize) -> &'static [f64] {
+    static TABLE: std::sync::OnceLock<Vec<Vec<f64>>> = std::sync::OnceLock::new();
+    let table = TABLE.get_or_init(|| (0..=INTERPOLATION_DEGREE).map(invert_collocation).collect());
+    &table[n]
+}
+
+/// Gauss–Jordan inverse of the collocation matrix of degree `n`.
+fn invert_collocation(n: usize) -> Vec<f64> {
+    let size = n + 1;
+    let nodes = lobatto_nodes(n);
+    let mut a = vec![0.0; size * size];
+    for (i, &s) in nodes.iter().enumerate() {
+        for j in 0..size {
+            a[i * size + j] =
+                super::tensor::binomial(n, j) * s.powi(j as i32) * (1.0 - s).powi((n - j) as i32);
+        }
+    }
+    let mut inverse = vec![0.0; size * size];
+    for i in 0..size {
+        inverse[i * size + i] = 1.0;
+    }
+    for column in 0..size {
+        let pivot = (column..size)
+            .max_by(|&r, &t| {
+                a[r * size + column]
+                    .abs()
+                    .total_cmp(&a[t * size + column].abs())
+            })
+            .unwrap_or(column);
+        for k in 0..size {
+            a.swap(column * size + k, pivot * size + k);
+            inverse.swap(column * size + k, pivot * size + k);
+        }
+        let scale = 1.0 / a[column * size + column];
+        for k in 0..size {
+            a[column * size + k] *= scale;
+            inverse[column * size + k] *= scale;
+        }
+        for row in 0..size {
+            if row != column {
+                let factor = a[row * size + column];
+                for k in 0..size {
+                    a[row * size + k] -= factor * a[column * size + k];
+                    inverse[row * size + k] -= factor * inverse[column * size + k];
+                }
+            }
+        }
+    }
+    inverse
+}
 
 /// The primitive `Π_q(ũ)` of one family at one picked parameter.
 #[derive(Debug, Clone, PartialEq)]
@@ -137,10 +207,14 @@ impl LocalProblem {
 
     /// De Boor with the ratios `α_{l,r}` listed in `ratios` (as `((l, r), α)`) set to the
     /// given values instead of computed from the knots.
-    pub fn homogeneous_point_with(&self, knots: &[f64], ratios: &[((usize, usize), f64)]) -> [f64; 4] {
+    pub fn homogeneous_point_with(
+        &self,
+        knots: &[f64],
+        ratios: &[((usize, usize), f64)],
+    ) -> [f64; 4] {
         let q = self.degree;
         let u = self.parameter;
-        let mut d = self.poles.clone();
+        let mut d: SmallVec<[[f64; 4]; 16]> = SmallVec::from_slice(&self.poles);
         for r in 1..=q {
             for l in (r..=q).rev() {
                 let (lo, hi) = self.ratio_knots(l, r);
@@ -150,8 +224,10 @@ impl LocalProblem {
                     None if span > 0.0 => (u - knots[lo]) / span,
                     None => 0.0,
                 };
+                let (before, after) = d.split_at_mut(l);
+                let (previous, current) = (&before[l - 1], &mut after[0]);
                 for c in 0..4 {
-                    d[l][c] = d[l - 1][c] + alpha * (d[l][c] - d[l - 1][c]);
+                    current[c] = previous[c] + alpha * (current[c] - previous[c]);
                 }
             }
         }
@@ -180,11 +256,7 @@ impl LocalProblem {
             }
             value
         };
-        let mut d: Vec<[Dual; 4]> = self
-            .poles
-            .iter()
-            .map(|p| p.map(Dual::constant))
-            .collect();
+        let mut d: Vec<[Dual; 4]> = self.poles.iter().map(|p| p.map(Dual::constant)).collect();
         for r in 1..=q {
             for l in (r..=q).rev() {
                 let (lo, hi) = self.ratio_knots(l, r);
@@ -296,6 +368,23 @@ impl LocalProblem {
         knots
     }
 
+    /// [`LocalProblem::knots_at`] into a buffer.
+    fn knots_into(&self, search: &SearchBox, s: [f64; MAX_VARIABLES], knots: &mut [f64]) {
+        knots.copy_from_slice(&self.knots);
+        let value = |k: usize| {
+            let (lo, hi) = search.bounds[k];
+            lo + s[k] * (hi - lo)
+        };
+        for (k, &m) in search.unknowns.iter().enumerate() {
+            knots[m] = value(k);
+        }
+        if let Some((a, b)) = search.blow_up {
+            let (sigma, lambda) = (value(a), value(b));
+            knots[search.unknowns[a]] = self.parameter - sigma * lambda;
+            knots[search.unknowns[b]] = self.parameter + sigma * (1.0 - lambda);
+        }
+    }
+
     /// Each local knot as a function of the unit box's variables.
     fn knot_values(&self, search: &SearchBox) -> Vec<KnotValue> {
         let u = self.parameter;
@@ -330,9 +419,186 @@ impl LocalProblem {
     /// docs), `e_i` the rows of `projection` (as many as unknowns), in the ordinary Bernstein
     /// basis. Rational in nothing: every step is a product or sum of polynomials.
     pub fn system(&self, search: &SearchBox, target: Point, projection: &[Point]) -> Tensor {
+        let numerator = self.numerator(search);
+        let parts: Vec<Tensor> = projection
+            .iter()
+            .map(|e| {
+                numerator.combine(&[
+                    e[0],
+                    e[1],
+                    e[2],
+                    -(e[0] * target[0] + e[1] * target[1] + e[2] * target[2]),
+                ])
+            })
+            .collect();
+        Tensor::stack(&parts)
+    }
+
+    /// The homogeneous point's numerator `D (X, W)` on the unit box of `search` (four
+    /// components, ordinary Bernstein basis): by interpolation where its degrees are small
+    /// ([`INTERPOLATION_DEGREE`]), else by exact Bernstein arithmetic
+    /// ([`LocalProblem::numerator_by_products`]).
+    pub fn numerator(&self, search: &SearchBox) -> Tensor {
+        self.numerator_by_interpolation(search)
+            .unwrap_or_else(|| self.numerator_by_products(search))
+    }
+
+    /// The ratios that depend on the unknowns (neither constant nor forced), with the
+    /// variables each depends on, and whether it is the blown-up `α_{q,q}`.
+    fn moving_ratios(
+        &self,
+        search: &SearchBox,
+    ) -> Vec<((usize, usize), [bool; MAX_VARIABLES], bool)> {
+        let q = self.degree;
+        let moving: Vec<bool> = (0..=2 * q + 1)
+            .map(|m| search.unknowns.contains(&m))
+            .collect();
+        let blown = search
+            .blow_up
+            .map(|(a, b)| (search.unknowns[a], search.unknowns[b]));
+        let variables_of = |m: usize| {
+            let mut mask = [false; MAX_VARIABLES];
+            if let Some(k) = search.unknowns.iter().position(|&i| i == m) {
+                match search.blow_up {
+                    Some((a, b)) if k == a || k == b => {
+                        mask[a] = true;
+                        mask[b] = true;
+                    }
+                    _ => mask[k] = true,
+                }
+            }
+            mask
+        };
+        let mut ratios = Vec::new();
+        for r in 1..=q {
+            for l in r..=q {
+                let (lo, hi) = self.ratio_knots(l, r);
+                if blown == Some((lo, hi)) {
+                    let mut mask = [false; MAX_VARIABLES];
+                    if let Some((_, b)) = search.blow_up {
+                        mask[b] = true;
+                    }
+                    ratios.push(((l, r), mask, true));
+                    continue;
+                }
+                if self.forced(l, r, &moving).is_some() || !(moving[lo] || moving[hi]) {
+                    continue;
+                }
+                let (a, b) = (variables_of(lo), variables_of(hi));
+                ratios.push(((l, r), [0, 1, 2].map(|k| a[k] || b[k]), false));
+            }
+        }
+        ratios
+    }
+
+    /// [`LocalProblem::numerator`] by interpolation: `D (X, W)` evaluated (normalised de Boor
+    /// times the product `D` of the moving ratios' denominators) on the tensor grid of
+    /// Chebyshev–Lobatto nodes of its degrees, then converted to Bernstein coefficients by
+    /// the inverse collocation matrices; `None` when a degree exceeds
+    /// [`INTERPOLATION_DEGREE`].
+    pub fn numerator_by_interpolation(&self, search: &SearchBox) -> Option<Tensor> {
+        self.numerator_with_ratios(search, &[])
+    }
+
+    /// [`LocalProblem::numerator_by_interpolation`] with the ratios in `fixed` (as
+    /// `((l, r), α)`) held at the given values: they then depend on nothing, and their
+    /// denominators leave `D`.
+    pub fn numerator_with_ratios(
+        &self,
+        search: &SearchBox,
+        fixed: &[((usize, usize), f64)],
+    ) -> Option<Tensor> {
+        let q = self.degree;
+        let mut ratios = self.moving_ratios(search);
+        ratios.retain(|(at, _, _)| fixed.iter().all(|(f, _)| f != at));
+        let mut degrees = [0usize; MAX_VARIABLES];
+        for (_, mask, _) in &ratios {
+            for k in 0..MAX_VARIABLES {
+                degrees[k] += usize::from(mask[k]);
+            }
+        }
+        if degrees.iter().any(|&d| d > INTERPOLATION_DEGREE) {
+            return None;
+        }
+        let nodes: [Vec<f64>; MAX_VARIABLES] = degrees.map(lobatto_nodes);
+        let e = degrees.map(|d| d + 1);
+        let mut values = vec![0.0; e[0] * e[1] * e[2] * 4];
+        let blown_ratio = ratios.iter().find(|r| r.2).map(|r| r.0);
+        let mut knots = self.knots.clone();
+        for i2 in 0..e[2] {
+            for i1 in 0..e[1] {
+                for i0 in 0..e[0] {
+                    let s = [nodes[0][i0], nodes[1][i1], nodes[2][i2]];
+                    self.knots_into(search, s, &mut knots);
+                    let mut overrides: SmallVec<[((usize, usize), f64); 3]> =
+                        SmallVec::from_slice(fixed);
+                    if let (Some(at), Some((_, b))) = (blown_ratio, search.blow_up) {
+                        let (lo, hi) = search.bounds[b];
+                        overrides.push((at, lo + s[b] * (hi - lo)));
+                    }
+                    let h = self.homogeneous_point_with(&knots, &overrides);
+                    let mut d = 1.0;
+                    for &((l, r), _, blown) in &ratios {
+                        if !blown {
+                            let (lo, hi) = self.ratio_knots(l, r);
+                            d *= knots[hi] - knots[lo];
+                        }
+                    }
+                    let at = ((i2 * e[1] + i1) * e[0] + i0) * 4;
+                    for c in 0..4 {
+                        values[at + c] = d * h[c];
+                    }
+                }
+            }
+        }
+        let _ = q;
+        // Apply the inverse collocation matrix along each variable.
+        for k in 0..MAX_VARIABLES {
+            if degrees[k] == 0 {
+                continue;
+            }
+            let inverse = collocation_inverse(degrees[k]);
+            let n = e[k];
+            let stride = [1, e[0], e[0] * e[1]][k] * 4;
+            let mut fiber = [0.0; (INTERPOLATION_DEGREE + 1) * 4];
+            let others: [usize; 2] = match k {
+                0 => [1, 2],
+                1 => [0, 2],
+                _ => [0, 1],
+            };
+            let other_stride = |j: usize| [1, e[0], e[0] * e[1]][j] * 4;
+            for j1 in 0..e[others[1]] {
+                for j0 in 0..e[others[0]] {
+                    let base = j0 * other_stride(others[0]) + j1 * other_stride(others[1]);
+                    for i in 0..n {
+                        for c in 0..4 {
+                            fiber[i * 4 + c] = values[base + i * stride + c];
+                        }
+                    }
+                    for i in 0..n {
+                        for c in 0..4 {
+                            values[base + i * stride + c] =
+                                (0..n).map(|j| inverse[i * n + j] * fiber[j * 4 + c]).sum();
+                        }
+                    }
+                }
+            }
+        }
+        Some(Tensor {
+            degrees,
+            components: 4,
+            coefficients: values,
+        })
+    }
+
+    /// [`LocalProblem::numerator`] by exact Bernstein arithmetic: de Boor's triangle over
+    /// common denominators, every step a product or sum of polynomials.
+    pub fn numerator_by_products(&self, search: &SearchBox) -> Tensor {
         let q = self.degree;
         let u = self.parameter;
-        let moving: Vec<bool> = (0..=2 * q + 1).map(|m| search.unknowns.contains(&m)).collect();
+        let moving: Vec<bool> = (0..=2 * q + 1)
+            .map(|m| search.unknowns.contains(&m))
+            .collect();
         let values = self.knot_values(search);
         let blown = search
             .blow_up
@@ -356,16 +622,25 @@ impl LocalProblem {
                         unreachable!("blown is Some only with a blow-up")
                     };
                     let lambda = lambda_tensor(search, blow);
-                    let one_minus = Tensor::constant(&[1.0]).plus(&lambda.times(&Tensor::constant(&[-1.0])));
+                    let one_minus =
+                        Tensor::constant(&[1.0]).plus(&lambda.times(&Tensor::constant(&[-1.0])));
                     (one_minus, lambda, None)
                 } else {
                     match self.forced(l, r, &moving) {
-                        Some(Forced::Zero) => (Tensor::constant(&[1.0]), Tensor::constant(&[0.0]), None),
-                        Some(Forced::One) => (Tensor::constant(&[0.0]), Tensor::constant(&[1.0]), None),
+                        Some(Forced::Zero) => {
+                            (Tensor::constant(&[1.0]), Tensor::constant(&[0.0]), None)
+                        }
+                        Some(Forced::One) => {
+                            (Tensor::constant(&[0.0]), Tensor::constant(&[1.0]), None)
+                        }
                         None => match (&values[lo], &values[hi]) {
                             (KnotValue::Fixed(a), KnotValue::Fixed(b)) => {
                                 let alpha = if b > a { (u - a) / (b - a) } else { 0.0 };
-                                (Tensor::constant(&[1.0 - alpha]), Tensor::constant(&[alpha]), None)
+                                (
+                                    Tensor::constant(&[1.0 - alpha]),
+                                    Tensor::constant(&[alpha]),
+                                    None,
+                                )
                             }
                             (t_lo, t_hi) => {
                                 let as_tensor = |v: &KnotValue| match v {
@@ -411,12 +686,7 @@ impl LocalProblem {
                 d[l] = left.times(l_factor).plus(&right.times(r_factor));
             }
         }
-        let result = d.swap_remove(q).unscaled();
-        let parts: Vec<Tensor> = projection
-            .iter()
-            .map(|e| result.combine(&[e[0], e[1], e[2], -(e[0] * target[0] + e[1] * target[1] + e[2] * target[2])]))
-            .collect();
-        Tensor::stack(&parts)
+        d.swap_remove(q).unscaled()
     }
 }
 
@@ -447,7 +717,13 @@ mod tests {
         // N_{i,0} on the local knots, then the recursion; poles d_i use knots i ..= i + q + 1.
         let count = knots.len() - 1;
         let mut n: Vec<f64> = (0..count)
-            .map(|i| if knots[i] <= u && u < knots[i + 1] { 1.0 } else { 0.0 })
+            .map(|i| {
+                if knots[i] <= u && u < knots[i + 1] {
+                    1.0
+                } else {
+                    0.0
+                }
+            })
             .collect();
         for degree in 1..=q {
             let mut next = vec![0.0; count - degree];
@@ -457,7 +733,8 @@ mod tests {
                     v += (u - knots[i]) / (knots[i + degree] - knots[i]) * n[i];
                 }
                 if knots[i + degree + 1] > knots[i + 1] {
-                    v += (knots[i + degree + 1] - u) / (knots[i + degree + 1] - knots[i + 1]) * n[i + 1];
+                    v += (knots[i + degree + 1] - u) / (knots[i + degree + 1] - knots[i + 1])
+                        * n[i + 1];
                 }
                 next[i] = v;
             }
@@ -491,7 +768,11 @@ mod tests {
             let (pu, pd) = (problem.point(&up), problem.point(&down));
             for c in 0..3 {
                 let fd = (pu[c] - pd[c]) / (2.0 * h);
-                assert!((partials[k][c] - fd).abs() < 1e-7, "knot {m}: {} vs {fd}", partials[k][c]);
+                assert!(
+                    (partials[k][c] - fd).abs() < 1e-7,
+                    "knot {m}: {} vs {fd}",
+                    partials[k][c]
+                );
             }
         }
     }
@@ -499,12 +780,42 @@ mod tests {
     /// `F = D (P - p)` must vanish exactly where `P = p` and its sign structure must follow
     /// `P - p` times a positive factor: check `F / (P - p)` is one positive scalar for every
     /// component at random points, for plain unknowns and for the span's blown-up pair.
+    /// The two constructions of the numerator — interpolation at Lobatto nodes and exact
+    /// Bernstein arithmetic over common denominators — agree coefficient by coefficient.
+    #[test]
+    fn interpolation_and_bernstein_arithmetic_give_the_same_numerator() {
+        let problem = problem();
+        for unknowns in [
+            vec![1, 5],
+            vec![3, 4],
+            vec![2, 3, 4],
+            vec![2, 5, 6],
+            vec![1, 6],
+            vec![2, 3],
+        ] {
+            let search = problem.search_box(&unknowns, 1e-9, 1e-4).unwrap();
+            let a = problem.numerator_by_interpolation(&search).unwrap();
+            let b = problem.numerator_by_products(&search);
+            assert_eq!(a.degrees, b.degrees, "{unknowns:?}");
+            let scale = b.coefficients.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            for (x, y) in a.coefficients.iter().zip(&b.coefficients) {
+                assert!((x - y).abs() <= 1e-12 * scale, "{unknowns:?}: {x} vs {y}");
+            }
+        }
+    }
+
     #[test]
     fn the_polynomial_system_is_a_positive_multiple_of_the_equations() {
         let problem = problem();
         let target = [0.303, 0.936, 0.1];
         let rows = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
-        for unknowns in [vec![1, 5], vec![3, 4], vec![2, 3, 4], vec![2, 5, 6], vec![1, 6]] {
+        for unknowns in [
+            vec![1, 5],
+            vec![3, 4],
+            vec![2, 3, 4],
+            vec![2, 5, 6],
+            vec![1, 6],
+        ] {
             let search = problem.search_box(&unknowns, 0.0, 1e-3).unwrap();
             let system = problem.system(&search, target, &rows);
             let mut checked = 0;

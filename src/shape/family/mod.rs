@@ -3,12 +3,17 @@
 //! one primitive they all solve ([`local`]), and a certified solver for its equations
 //! ([`tensor`], [`isolate`]).
 
+pub(crate) mod domain;
 pub(crate) mod isolate;
 pub(crate) mod local;
-pub(crate) mod tensor;
+pub(crate) mod outline;
 pub(crate) mod problems;
+pub(crate) mod regions;
 pub(crate) mod roots;
 pub(crate) mod solve;
+pub(crate) mod tensor;
 
+pub use outline::Outline;
 pub use problems::{Family, FamilyChoice, FamilyNotApplicable, FamilyProblem};
+pub use regions::{FamilyRegions, SetRegion, family_regions};
 pub use solve::{FamilyGroup, FamilyOutcome, KnotSet, KnotSolution, SetMembership, solve_families};

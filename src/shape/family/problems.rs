@@ -79,9 +79,7 @@ impl FamilyChoice {
             Family::Direct | Family::Triples => curve.degree() >= 2,
         };
         let chosen = match self {
-            FamilyChoice::Default => {
-                family != Family::Triples || curve.dimension().count() == 3
-            }
+            FamilyChoice::Default => family != Family::Triples || curve.dimension().count() == 3,
             FamilyChoice::Only {
                 envelope,
                 direct,
@@ -100,18 +98,24 @@ impl FamilyChoice {
 #[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
 pub enum FamilyNotApplicable {
     /// The moved knot's index leaves the envelope's knots outside the knot vector.
-    #[error("the knot {moved_knot} next to t cannot move to t: the envelope's knots would lie outside the knot vector")]
+    #[error(
+        "the knot {moved_knot} next to t cannot move to t: the envelope's knots would lie outside the knot vector"
+    )]
     OutOfRange { moved_knot: usize },
     /// The moved knot is an end of the domain (and `keep_domain` holds).
     #[error("moving knot {moved_knot} to t would move an end of the domain")]
     MovesDomainEnd { moved_knot: usize },
     /// The knots on either side of the moved one coincide: the envelope's span at `t` is
     /// empty.
-    #[error("the knots on either side of knot {moved_knot} coincide, so the envelope has no span at t")]
+    #[error(
+        "the knots on either side of knot {moved_knot} coincide, so the envelope has no span at t"
+    )]
     EmptySpan { moved_knot: usize },
     /// The local control points are (nearly) collinear: knot moves only slide the point
     /// along a line.
-    #[error("the control points acting at t are collinear, so knot moves only slide the point along a line")]
+    #[error(
+        "the control points acting at t are collinear, so knot moves only slide the point along a line"
+    )]
     Collinear,
 }
 
@@ -271,8 +275,14 @@ pub fn plane_of(points: &[Point]) -> Option<[Point; 3]> {
     Some([e1, e2, normal])
 }
 
-/// The unknown sets of `size` (2 or 3) among local relevant knots `1 ..= 2q`, without the
-/// domain's ends (full indices `p` and `n + 1`) while `keep_domain` holds.
+/// Triples are drawn from the `TRIPLE_WINDOW` relevant knots nearest `t` (`t_{q-2} …
+/// t_{q+3}`): all of a cubic's, and on higher degrees the ones with leverage (a knot `k`
+/// places from `t`'s span moves the point by about `distance^q`).
+pub const TRIPLE_WINDOW: usize = 6;
+
+/// The unknown sets of `size` (2 or 3) among local relevant knots `1 ..= 2q` (triples: the
+/// [`TRIPLE_WINDOW`] nearest `t`), without the domain's ends (full indices `p` and `n + 1`)
+/// while `keep_domain` holds.
 pub fn unknown_sets(
     problem: &LocalProblem,
     size: usize,
@@ -282,7 +292,13 @@ pub fn unknown_sets(
     let q = problem.degree;
     let p = curve.degree();
     let n = curve.control_points().len() - 1;
-    let movable: Vec<usize> = (1..=2 * q)
+    let (first, last) = if size == 3 {
+        let half = TRIPLE_WINDOW / 2;
+        ((q + 1).saturating_sub(half).max(1), (q + half).min(2 * q))
+    } else {
+        (1, 2 * q)
+    };
+    let movable: Vec<usize> = (first..=last)
         .filter(|&m| {
             let full = problem.full_index[m];
             !(keep_domain && (full == p || full == n + 1))

@@ -5,7 +5,7 @@
 
 use super::isolate::{IsolationOptions, invert, isolate};
 use super::local::{LocalProblem, SearchBox};
-use super::tensor::MAX_VARIABLES;
+use super::tensor::{MAX_VARIABLES, Tensor};
 use crate::shape::candidate::{Frame, triangle_frame};
 use crate::shape::pairs::{CLAMP_TOLERANCE, KNOT_TOLERANCE, KnotPair, LocalKnots, solve_pair};
 use crate::spline::vector::{Point, dot, sub};
@@ -16,7 +16,13 @@ pub const SEARCH_MARGIN: f64 = 1e-9;
 
 /// Triples keep the span at least this fraction of its room away from collapsing onto `t`
 /// (where three unknowns meeting at `t` would make the system vanish on a line).
-pub const TRIPLE_COLLAPSE: f64 = 1e-7;
+pub const TRIPLE_COLLAPSE: f64 = 1e-4;
+
+/// Boxes the subdivision of one pair may examine at most.
+pub const PAIR_BOXES: usize = 4096;
+
+/// Boxes the subdivision of one triple may examine at most.
+pub const TRIPLE_BOXES: usize = 8192;
 
 /// Newton steps at most when polishing a root on de Boor.
 const POLISH_STEPS: usize = 8;
@@ -37,6 +43,8 @@ pub enum Solver {
     Quadratic,
     /// The outermost pair's linear system.
     Outermost,
+    /// A pair with one outermost knot: one polynomial equation in the other knot.
+    OneOutermost,
     /// Certified subdivision.
     Subdivision,
 }
@@ -48,6 +56,8 @@ pub fn solver_for(problem: &LocalProblem, unknowns: &[usize]) -> Solver {
         Solver::Quadratic
     } else if unknowns.len() == 2 && unknowns == [1, 2 * q] {
         Solver::Outermost
+    } else if unknowns.len() == 2 && (unknowns[0] == 1 || unknowns[1] == 2 * q) {
+        Solver::OneOutermost
     } else {
         Solver::Subdivision
     }
@@ -57,14 +67,22 @@ pub fn solver_for(problem: &LocalProblem, unknowns: &[usize]) -> Solver {
 /// per unknown (the plane's axes for pairs, the three axes for triples). `weighted` tells
 /// whether the poles' weights differ (the `q = 2` frame then weighs the barycentric
 /// coordinates).
+///
+/// `budget` is the number of subdivision boxes the whole request may still examine; this
+/// set takes what it uses from it.
 pub fn solve_unknowns(
     problem: &LocalProblem,
     unknowns: &[usize],
     target: Point,
     rows: &[Point],
     weighted: bool,
+    budget: &mut usize,
 ) -> Vec<LocalRoot> {
-    let collapse = if unknowns.len() == 3 { TRIPLE_COLLAPSE } else { 0.0 };
+    let collapse = if unknowns.len() == 3 {
+        TRIPLE_COLLAPSE
+    } else {
+        0.0
+    };
     let Some(search) = problem.search_box(unknowns, SEARCH_MARGIN, collapse) else {
         return Vec::new();
     };
@@ -81,22 +99,17 @@ pub fn solve_unknowns(
             .into_iter()
             .map(|k| (k, true))
             .collect(),
-        Solver::Subdivision => {
-            let system = problem.system(&search, target, rows);
-            let options = IsolationOptions {
-                max_boxes: if unknowns.len() == 3 { 20_000 } else { 4096 },
-                ..IsolationOptions::default()
-            };
-            isolate(&system, unknowns.len(), options)
-                .roots
+        Solver::OneOutermost => match one_outermost(problem, unknowns, target, rows, budget) {
+            Some(found) => found
                 .into_iter()
-                .map(|root| {
-                    let mut knots = problem.knots_at(&search, root.point);
+                .map(|(mut knots, certified)| {
                     polish(problem, &search, &mut knots, target, rows);
-                    (knots, root.certified)
+                    (knots, certified)
                 })
-                .collect()
-        }
+                .collect(),
+            None => subdivision(problem, &search, target, rows, budget),
+        },
+        Solver::Subdivision => subdivision(problem, &search, target, rows, budget),
     };
     let mut roots: Vec<LocalRoot> = Vec::new();
     for (knots, certified) in raw {
@@ -115,6 +128,174 @@ pub fn solve_unknowns(
         }
     }
     roots
+}
+
+/// Every root of the unknowns of `search` by certified subdivision ([`isolate`]), polished
+/// on de Boor.
+fn subdivision(
+    problem: &LocalProblem,
+    search: &SearchBox,
+    target: Point,
+    rows: &[Point],
+    budget: &mut usize,
+) -> Vec<(Vec<f64>, bool)> {
+    let count = search.unknowns.len();
+    let system = problem.system(search, target, rows);
+    let cap = if count == 3 { TRIPLE_BOXES } else { PAIR_BOXES };
+    let options = IsolationOptions {
+        max_boxes: cap.min(*budget),
+        ..IsolationOptions::default()
+    };
+    let outside = |lo: [f64; MAX_VARIABLES], width: [f64; MAX_VARIABLES]| {
+        disordered(problem, search, lo, width)
+    };
+    let isolation = isolate(&system, count, options, &outside);
+    *budget = budget.saturating_sub(isolation.boxes);
+    isolation
+        .roots
+        .into_iter()
+        .map(|root| {
+            let mut knots = problem.knots_at(search, root.point);
+            polish(problem, search, &mut knots, target, rows);
+            (knots, root.certified)
+        })
+        .collect()
+}
+
+/// A pair with one outermost knot (docs/method.md §31.3): that knot enters one ratio only,
+/// `α_A = α_{1,1}` for `t_1` (`α_{q,1}` for `t_{2q}`), and the homogeneous point is affine in
+/// it, `H = H_0(b) + α_A (H_1(b) - H_0(b))` with `b` the other knot. The equations
+/// `F_0(b) + α_A G(b) = 0` (`G = F_1 - F_0`, both projected) hold exactly when
+/// `g(b) = F_0 × G = 0` (a univariate polynomial, isolated with certification) and
+/// `α_A = -F_0 · G / |G|²`; then `t_1 = (ũ - α_A t_{q+1}) / (1 - α_A)` (or
+/// `t_{2q} = t_q + (ũ - t_q) / α_B`). `None` when the other knot's degree is too high for
+/// this construction (the caller subdivides in two variables).
+fn one_outermost(
+    problem: &LocalProblem,
+    unknowns: &[usize],
+    target: Point,
+    rows: &[Point],
+    budget: &mut usize,
+) -> Option<Vec<(Vec<f64>, bool)>> {
+    let q = problem.degree;
+    let u = problem.parameter;
+    let (outer, other, ratio) = if unknowns[0] == 1 {
+        (1, unknowns[1], (1, 1))
+    } else {
+        (2 * q, unknowns[0], (q, 1))
+    };
+    // Without a margin, so that the span's collapse (below) sits exactly at an end.
+    let search = problem.search_box(&[other], 0.0, 0.0)?;
+    let project = |numerator: &Tensor| -> [Tensor; 2] {
+        [0, 1].map(|i| {
+            let e = rows[i];
+            numerator.combine(&[
+                e[0],
+                e[1],
+                e[2],
+                -(e[0] * target[0] + e[1] * target[1] + e[2] * target[2]),
+            ])
+        })
+    };
+    let f0 = project(&problem.numerator_with_ratios(&search, &[(ratio, 0.0)])?);
+    let f1 = project(&problem.numerator_with_ratios(&search, &[(ratio, 1.0)])?);
+    let minus = Tensor::constant(&[-1.0]);
+    let g: [Tensor; 2] = [0, 1].map(|i| {
+        f1[i]
+            .clone()
+            .scaled()
+            .plus(&f0[i].clone().scaled().times(&minus))
+    });
+    let f0s = [f0[0].clone().scaled(), f0[1].clone().scaled()];
+    // The outer knot's leverage is a product of `q - 1` ratios that all vanish when the other
+    // knot closes `t`'s span onto `ũ` (the pairs (t_1, t_{q+1}) and (t_q, t_{2q})): `G` has
+    // the factor `(b - ũ)^{q-1}` there, a root of `g` on the box's edge that is no solution.
+    // It is divided out.
+    let collapse = match (outer == 1, other) {
+        (true, m) if m == q + 1 => Some(true),
+        (false, m) if m == q => Some(false),
+        _ => None,
+    };
+    let g_reduced: [Tensor; 2] = match collapse {
+        Some(at_start) => [0, 1].map(|i| {
+            g[i].clone()
+                .unscaled()
+                .divided_at_end(q - 1, at_start)
+                .scaled()
+        }),
+        None => g.clone(),
+    };
+    let cross = f0s[0]
+        .times(&g_reduced[1])
+        .plus(&f0s[1].times(&g_reduced[0]).times(&minus))
+        .unscaled();
+    let options = IsolationOptions {
+        max_boxes: PAIR_BOXES.min(*budget),
+        ..IsolationOptions::default()
+    };
+    let isolation = isolate(&cross, 1, options, &|_, _| false);
+    *budget = budget.saturating_sub(isolation.boxes);
+    let (g0, g1) = (g[0].clone().unscaled(), g[1].clone().unscaled());
+    let mut found = Vec::new();
+    for root in isolation.roots {
+        let s = root.point;
+        let (mut v0, mut v1, mut w0, mut w1) = ([0.0], [0.0], [0.0], [0.0]);
+        f0[0].evaluate(s, &mut v0);
+        f0[1].evaluate(s, &mut v1);
+        g0.evaluate(s, &mut w0);
+        g1.evaluate(s, &mut w1);
+        let norm = w0[0] * w0[0] + w1[0] * w1[0];
+        if !(norm > 0.0) {
+            continue;
+        }
+        let alpha = -(v0[0] * w0[0] + v1[0] * w1[0]) / norm;
+        let mut knots = problem.knots_at(&search, s);
+        knots[outer] = if outer == 1 {
+            (u - alpha * knots[q + 1]) / (1.0 - alpha)
+        } else {
+            knots[q] + (u - knots[q]) / alpha
+        };
+        if knots[outer].is_finite() {
+            found.push((knots, root.certified));
+        }
+    }
+    Some(found)
+}
+
+/// Whether two neighbouring unknowns (local indices `m`, `m + 1`) are out of order on the
+/// whole box (lower corner `lo`, widths `width` in the unit box): each knot is affine in
+/// each variable, so its extremes over the box lie at the box's corners.
+fn disordered(
+    problem: &LocalProblem,
+    search: &SearchBox,
+    lo: [f64; MAX_VARIABLES],
+    width: [f64; MAX_VARIABLES],
+) -> bool {
+    let unknowns = &search.unknowns;
+    let n = unknowns.len();
+    let pairs: Vec<(usize, usize)> = (1..n)
+        .filter(|&k| unknowns[k] == unknowns[k - 1] + 1 && !(search.blow_up == Some((k - 1, k))))
+        .map(|k| (unknowns[k - 1], unknowns[k]))
+        .collect();
+    if pairs.is_empty() {
+        return false;
+    }
+    let scale = problem.knots[2 * problem.degree + 1] - problem.knots[0];
+    // Out of order everywhere when even the best corner has the lower knot above the upper.
+    let mut largest_gap = vec![f64::NEG_INFINITY; pairs.len()];
+    for corner in 0..(1usize << n) {
+        let mut s = [0.0; MAX_VARIABLES];
+        for k in 0..n {
+            s[k] = lo[k] + if corner >> k & 1 == 1 { width[k] } else { 0.0 };
+        }
+        let knots = problem.knots_at(search, s);
+        for (gap, &(m, next)) in largest_gap.iter_mut().zip(&pairs) {
+            *gap = gap.max(knots[next] - knots[m]);
+        }
+    }
+    largest_gap
+        .iter()
+        .any(|&gap| gap < -CLAMP_TOLERANCE * scale)
 }
 
 /// The `q = 2` closed forms (the paper's six pairs, docs/method.md §4) on the triangle of
@@ -169,7 +350,8 @@ fn outermost(problem: &LocalProblem, target: Point, rows: &[Point]) -> Vec<Vec<f
     let q = problem.degree;
     let u = problem.parameter;
     let value = |alpha_a: f64, alpha_b: f64| {
-        let h = problem.homogeneous_point_with(&problem.knots, &[((1, 1), alpha_a), ((q, 1), alpha_b)]);
+        let h =
+            problem.homogeneous_point_with(&problem.knots, &[((1, 1), alpha_a), ((q, 1), alpha_b)]);
         [0, 1].map(|i| {
             let e = rows[i];
             e[0] * (h[0] - target[0] * h[3])

@@ -107,6 +107,10 @@ pub struct FamilyOutcome {
     pub solutions: Vec<KnotSolution>,
 }
 
+/// Subdivision boxes one request may examine over all its pairs and triples (a time bound:
+/// a few tens of milliseconds at most).
+pub const REQUEST_BOXES: usize = 60_000;
+
 /// The local problems of the requested families at `query.parameter`, in answer order:
 /// envelope right, envelope left, direct, triples.
 pub fn family_problems(query: &ShapeQuery, choice: FamilyChoice) -> Vec<FamilyProblem> {
@@ -143,6 +147,7 @@ fn rows_for(curve: &Curve, problem: &FamilyProblem, size: usize) -> Option<Vec<P
 pub fn solve_families(query: &ShapeQuery, choice: FamilyChoice, target: Point) -> FamilyOutcome {
     let curve = query.curve;
     let mut outcome = FamilyOutcome::default();
+    let mut budget = REQUEST_BOXES;
     for problem in family_problems(query, choice) {
         if problem.family == Family::Envelope && curve.degree() == 3 {
             cubic_envelope(query, target, problem, &mut outcome);
@@ -161,7 +166,11 @@ pub fn solve_families(query: &ShapeQuery, choice: FamilyChoice, target: Point) -
             outcome.groups.push(group);
             continue;
         }
-        let size = if group.problem.family == Family::Triples { 3 } else { 2 };
+        let size = if group.problem.family == Family::Triples {
+            3
+        } else {
+            2
+        };
         let Some(rows) = rows_for(curve, &group.problem, size) else {
             group.reason = Some(
                 "three knots meet three equations: on a 2D curve their solutions form curves, not points"
@@ -176,7 +185,7 @@ pub fn solve_families(query: &ShapeQuery, choice: FamilyChoice, target: Point) -
             let full: Vec<usize> = unknowns.iter().map(|&m| local.full_index[m]).collect();
             let set = KnotSet::new(&full);
             let mut contains = false;
-            for root in solve_unknowns(&local, &unknowns, target, &rows, weighted) {
+            for root in solve_unknowns(&local, &unknowns, target, &rows, weighted, &mut budget) {
                 if let Some(solution) = full_solution(
                     query,
                     &group.problem,
@@ -247,20 +256,22 @@ fn cubic_envelope(
     }
     for solution in found.solutions {
         let [first, second] = solution.pair.unknowns();
-        let indices = [first.full_index(solution.span), second.full_index(solution.span)];
-        let conditioning = group
-            .problem
-            .problem
-            .as_ref()
-            .map_or(0.0, |local| {
-                let local_knots: Vec<f64> =
-                    local.full_index.iter().map(|&i| solution.knots[i]).collect();
-                let unknowns: Vec<usize> = indices
-                    .iter()
-                    .filter_map(|&i| local.full_index.iter().position(|&f| f == i))
-                    .collect();
-                conditioning(local, &local_knots, &unknowns)
-            });
+        let indices = [
+            first.full_index(solution.span),
+            second.full_index(solution.span),
+        ];
+        let conditioning = group.problem.problem.as_ref().map_or(0.0, |local| {
+            let local_knots: Vec<f64> = local
+                .full_index
+                .iter()
+                .map(|&i| solution.knots[i])
+                .collect();
+            let unknowns: Vec<usize> = indices
+                .iter()
+                .filter_map(|&i| local.full_index.iter().position(|&f| f == i))
+                .collect();
+            conditioning(local, &local_knots, &unknowns)
+        });
         outcome.solutions.push(KnotSolution {
             family: Family::Envelope,
             side: Some(solution.side),
@@ -352,9 +363,9 @@ pub fn knots_admissible(curve: &Curve, knots: &[f64], keep_domain: bool) -> bool
     }
     let count = |vector: &[f64], value: f64| vector.iter().filter(|&&u| u == value).count();
     if keep_domain
-        && [p, n + 1].into_iter().any(|i| {
-            knots[i] != old[i] || count(knots, knots[i]) > count(old, old[i]).max(p + 1)
-        })
+        && [p, n + 1]
+            .into_iter()
+            .any(|i| knots[i] != old[i] || count(knots, knots[i]) > count(old, old[i]).max(p + 1))
     {
         return false;
     }
@@ -385,7 +396,9 @@ fn conditioning(local: &LocalProblem, knots: &[f64], unknowns: &[usize]) -> f64 
     let q = local.degree;
     let room = |m: usize| {
         let below = (0..m).rev().find(|i| !unknowns.contains(i)).unwrap_or(0);
-        let above = (m + 1..=2 * q + 1).find(|i| !unknowns.contains(i)).unwrap_or(2 * q + 1);
+        let above = (m + 1..=2 * q + 1)
+            .find(|i| !unknowns.contains(i))
+            .unwrap_or(2 * q + 1);
         local.knots[above] - local.knots[below]
     };
     let columns: Vec<Point> = unknowns
@@ -413,18 +426,24 @@ fn smallest_singular_value(columns: &[Point]) -> f64 {
         let radius = (0.25 * (a - c) * (a - c) + b * b).sqrt();
         // The smaller root, computed as det / larger to keep its accuracy.
         let larger = mean + radius;
-        if larger > 0.0 { (a * c - b * b) / larger } else { 0.0 }
+        if larger > 0.0 {
+            (a * c - b * b) / larger
+        } else {
+            0.0
+        }
     } else {
         // Symmetric 3 × 3: the trigonometric formula for the smallest eigenvalue.
-        let m = [[gram(0, 0), gram(0, 1), gram(0, 2)], [gram(1, 0), gram(1, 1), gram(1, 2)], [
-            gram(2, 0),
-            gram(2, 1),
-            gram(2, 2),
-        ]];
+        let m = [
+            [gram(0, 0), gram(0, 1), gram(0, 2)],
+            [gram(1, 0), gram(1, 1), gram(1, 2)],
+            [gram(2, 0), gram(2, 1), gram(2, 2)],
+        ];
         let trace = m[0][0] + m[1][1] + m[2][2];
         let mean = trace / 3.0;
         let off = m[0][1] * m[0][1] + m[0][2] * m[0][2] + m[1][2] * m[1][2];
-        let spread = ((m[0][0] - mean).powi(2) + (m[1][1] - mean).powi(2) + (m[2][2] - mean).powi(2)
+        let spread = ((m[0][0] - mean).powi(2)
+            + (m[1][1] - mean).powi(2)
+            + (m[2][2] - mean).powi(2)
             + 2.0 * off)
             / 6.0;
         let s = spread.sqrt();

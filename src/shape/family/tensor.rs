@@ -14,6 +14,8 @@
 /// Variables at most.
 pub const MAX_VARIABLES: usize = 3;
 
+use smallvec::SmallVec;
+
 /// A polynomial `f: [0, 1]^3 → R^components` in tensor-product Bernstein form (unused
 /// variables have degree 0). Coefficient `(i0, i1, i2)` is stored at
 /// `((i2 (d1 + 1) + i1) (d0 + 1) + i0) · components`, its values following each other.
@@ -53,7 +55,10 @@ impl Tensor {
     /// A scalar function that is affine in each variable of `variables` separately and
     /// independent of the others, from its values at the corners of the unit box: these are
     /// its Bernstein coefficients of degree 1 in those variables (scaled or not: `C(1, i) = 1`).
-    pub fn multi_affine(variables: [bool; MAX_VARIABLES], value: impl Fn([f64; 3]) -> f64) -> Tensor {
+    pub fn multi_affine(
+        variables: [bool; MAX_VARIABLES],
+        value: impl Fn([f64; 3]) -> f64,
+    ) -> Tensor {
         let degrees = variables.map(usize::from);
         let mut coefficients = Vec::with_capacity(8);
         for i2 in 0..=degrees[2] {
@@ -114,7 +119,8 @@ impl Tensor {
                             let row_in = self.index([0, b1, b2]) * c;
                             let row_out = out.index([a0, a1 + b1, a2 + b2]) * c;
                             for v in 0..eb[0] * c {
-                                out.coefficients[row_out + v] += factor * self.coefficients[row_in + v];
+                                out.coefficients[row_out + v] +=
+                                    factor * self.coefficients[row_in + v];
                             }
                         }
                     }
@@ -216,8 +222,11 @@ impl Tensor {
     pub fn unscaled(mut self) -> Tensor {
         let e = self.extents();
         let c = self.components;
-        let table: [Vec<f64>; MAX_VARIABLES] =
-            [0, 1, 2].map(|k| (0..e[k]).map(|i| 1.0 / binomial(self.degrees[k], i)).collect());
+        let table: [Vec<f64>; MAX_VARIABLES] = [0, 1, 2].map(|k| {
+            (0..e[k])
+                .map(|i| 1.0 / binomial(self.degrees[k], i))
+                .collect()
+        });
         for i2 in 0..e[2] {
             for i1 in 0..e[1] {
                 for i0 in 0..e[0] {
@@ -232,34 +241,88 @@ impl Tensor {
         self
     }
 
+    /// From the ordinary to the scaled basis (inverse of [`Tensor::unscaled`]), to multiply.
+    pub fn scaled(mut self) -> Tensor {
+        let e = self.extents();
+        let c = self.components;
+        let table: [Vec<f64>; MAX_VARIABLES] =
+            [0, 1, 2].map(|k| (0..e[k]).map(|i| binomial(self.degrees[k], i)).collect());
+        for i2 in 0..e[2] {
+            for i1 in 0..e[1] {
+                for i0 in 0..e[0] {
+                    let factor = table[0][i0] * table[1][i1] * table[2][i2];
+                    let at = self.index([i0, i1, i2]) * c;
+                    for v in &mut self.coefficients[at..at + c] {
+                        *v *= factor;
+                    }
+                }
+            }
+        }
+        self
+    }
+
+    /// Ordinary basis, one variable: `f / s^k` (`at_start`) or `f / (1 - s)^k`, for `f` with
+    /// that factor (its first, or last, `k` coefficients zero up to rounding, which is
+    /// dropped): `B_{i+k}^n = s^k B_i^{n-k} C(n, i+k) / C(n-k, i)`.
+    pub fn divided_at_end(&self, k: usize, at_start: bool) -> Tensor {
+        let n = self.degrees[0];
+        let c = self.components;
+        if k == 0 || k > n {
+            return self.clone();
+        }
+        let m = n - k;
+        let mut coefficients = Vec::with_capacity((m + 1) * c);
+        for i in 0..=m {
+            let (source, factor) = if at_start {
+                (i + k, binomial(n, i + k) / binomial(m, i))
+            } else {
+                (i, binomial(n, i) / binomial(m, i))
+            };
+            for v in 0..c {
+                coefficients.push(self.coefficients[source * c + v] * factor);
+            }
+        }
+        Tensor {
+            degrees: [m, 0, 0],
+            components: c,
+            coefficients,
+        }
+    }
+
     /// Ordinary basis: the two parts `s_k ∈ [0, at]` and `[at, 1]`, each on its own unit box
     /// (de Casteljau at `at` along `variable`).
     pub fn split(&self, variable: usize, at: f64) -> (Tensor, Tensor) {
-        let mut left = self.clone();
-        let mut right = self.clone();
+        let mut left = Tensor {
+            degrees: self.degrees,
+            components: self.components,
+            coefficients: vec![0.0; self.coefficients.len()],
+        };
+        let mut right = left.clone();
         let e = self.extents();
         let c = self.components;
         let d = self.degrees[variable];
-        let mut fiber = vec![0.0; (d + 1) * c];
-        let mut others = [0usize; 2];
-        let dims: Vec<usize> = (0..MAX_VARIABLES).filter(|&k| k != variable).collect();
-        others.copy_from_slice(&dims);
+        let mut fiber: SmallVec<[f64; 64]> = SmallVec::from_elem(0.0, (d + 1) * c);
+        let others: [usize; 2] = match variable {
+            0 => [1, 2],
+            1 => [0, 2],
+            _ => [0, 1],
+        };
+        let mut stride = [1usize; MAX_VARIABLES];
+        stride[1] = e[0];
+        stride[2] = e[0] * e[1];
+        let step = stride[variable] * c;
         for j1 in 0..e[others[1]] {
             for j0 in 0..e[others[0]] {
-                let offset = |i: usize| {
-                    let mut index = [0; MAX_VARIABLES];
-                    index[variable] = i;
-                    index[others[0]] = j0;
-                    index[others[1]] = j1;
-                    self.index(index) * c
-                };
+                let base = (j0 * stride[others[0]] + j1 * stride[others[1]]) * c;
                 for i in 0..=d {
-                    fiber[i * c..(i + 1) * c].copy_from_slice(&self.coefficients[offset(i)..offset(i) + c]);
+                    let from = base + i * step;
+                    fiber[i * c..(i + 1) * c].copy_from_slice(&self.coefficients[from..from + c]);
                 }
-                // Row r of the triangle: fiber[0] is left_r, fiber[d - r] is right's.
+                // Row r of de Casteljau's triangle: fiber[0] is left's r-th, fiber[d - r]
+                // right's (d - r)-th coefficient.
                 for v in 0..c {
-                    left.coefficients[offset(0) + v] = fiber[v];
-                    right.coefficients[offset(d) + v] = fiber[d * c + v];
+                    left.coefficients[base + v] = fiber[v];
+                    right.coefficients[base + d * step + v] = fiber[d * c + v];
                 }
                 for r in 1..=d {
                     for i in 0..=d - r {
@@ -268,13 +331,119 @@ impl Tensor {
                         }
                     }
                     for v in 0..c {
-                        left.coefficients[offset(r) + v] = fiber[v];
-                        right.coefficients[offset(d - r) + v] = fiber[(d - r) * c + v];
+                        left.coefficients[base + r * step + v] = fiber[v];
+                        right.coefficients[base + (d - r) * step + v] = fiber[(d - r) * c + v];
                     }
                 }
             }
         }
         (left, right)
+    }
+
+    /// Ordinary basis: the part `s_k ∈ [a, b]` of `variable` on its own unit box (de
+    /// Casteljau at `b`, keeping the left part, then at `a / b`, keeping the right one).
+    pub fn part(&self, variable: usize, a: f64, b: f64) -> Tensor {
+        let mut out = self.clone();
+        let e = self.extents();
+        let c = self.components;
+        let d = self.degrees[variable];
+        let mut stride = [1usize; MAX_VARIABLES];
+        stride[1] = e[0];
+        stride[2] = e[0] * e[1];
+        let step = stride[variable] * c;
+        let others: [usize; 2] = match variable {
+            0 => [1, 2],
+            1 => [0, 2],
+            _ => [0, 1],
+        };
+        let cut_right = b < 1.0;
+        let cut_left = a > 0.0;
+        let at_left = if cut_right { a / b } else { a };
+        let mut fiber: SmallVec<[f64; 64]> = SmallVec::from_elem(0.0, (d + 1) * c);
+        for j1 in 0..e[others[1]] {
+            for j0 in 0..e[others[0]] {
+                let base = (j0 * stride[others[0]] + j1 * stride[others[1]]) * c;
+                for i in 0..=d {
+                    let from = base + i * step;
+                    fiber[i * c..(i + 1) * c].copy_from_slice(&self.coefficients[from..from + c]);
+                }
+                if cut_right {
+                    // Left part at b: the first entries of each row of the triangle.
+                    let mut left: SmallVec<[f64; 64]> = SmallVec::from_elem(0.0, (d + 1) * c);
+                    left[..c].copy_from_slice(&fiber[..c]);
+                    for r in 1..=d {
+                        for i in 0..=d - r {
+                            for v in 0..c {
+                                fiber[i * c + v] += b * (fiber[(i + 1) * c + v] - fiber[i * c + v]);
+                            }
+                        }
+                        left[r * c..(r + 1) * c].copy_from_slice(&fiber[..c]);
+                    }
+                    fiber.copy_from_slice(&left);
+                }
+                if cut_left {
+                    // Right part at a/b: the last entries of each row.
+                    let mut right: SmallVec<[f64; 64]> = SmallVec::from_elem(0.0, (d + 1) * c);
+                    right[d * c..].copy_from_slice(&fiber[d * c..]);
+                    for r in 1..=d {
+                        for i in 0..=d - r {
+                            for v in 0..c {
+                                fiber[i * c + v] +=
+                                    at_left * (fiber[(i + 1) * c + v] - fiber[i * c + v]);
+                            }
+                        }
+                        right[(d - r) * c..(d - r + 1) * c]
+                            .copy_from_slice(&fiber[(d - r) * c..(d - r + 1) * c]);
+                    }
+                    fiber.copy_from_slice(&right);
+                }
+                for i in 0..=d {
+                    let to = base + i * step;
+                    out.coefficients[to..to + c].copy_from_slice(&fiber[i * c..(i + 1) * c]);
+                }
+            }
+        }
+        out
+    }
+
+    /// Ordinary basis: for each component, the range of the derivative with respect to
+    /// `variable` on this unit box — the smallest and largest of `d (c_{i+1} - c_i)` —
+    /// written to `out[..components]` (zero for a degree-0 variable).
+    pub fn derivative_ranges(&self, variable: usize, out: &mut [(f64, f64)]) {
+        let d = self.degrees[variable];
+        let c = self.components;
+        for range in out.iter_mut().take(c) {
+            *range = if d == 0 {
+                (0.0, 0.0)
+            } else {
+                (f64::INFINITY, f64::NEG_INFINITY)
+            };
+        }
+        if d == 0 {
+            return;
+        }
+        let e = self.extents();
+        let mut stride = [1usize; MAX_VARIABLES];
+        stride[1] = e[0];
+        stride[2] = e[0] * e[1];
+        let step = stride[variable] * c;
+        let scale = d as f64;
+        for i2 in 0..e[2] {
+            for i1 in 0..e[1] {
+                for i0 in 0..e[0] {
+                    if [i0, i1, i2][variable] == d {
+                        continue;
+                    }
+                    let at = (i0 + i1 * stride[1] + i2 * stride[2]) * c;
+                    for (v, range) in out.iter_mut().enumerate().take(c) {
+                        let slope =
+                            scale * (self.coefficients[at + step + v] - self.coefficients[at + v]);
+                        range.0 = range.0.min(slope);
+                        range.1 = range.1.max(slope);
+                    }
+                }
+            }
+        }
     }
 
     /// Ordinary basis: the derivative with respect to `variable` on this unit box,
@@ -303,7 +472,8 @@ impl Tensor {
                     let at = [i0, i1, i2];
                     let mut next = at;
                     next[variable] += 1;
-                    let (to, lo, hi) = (out.index(at) * c, self.index(at) * c, self.index(next) * c);
+                    let (to, lo, hi) =
+                        (out.index(at) * c, self.index(at) * c, self.index(next) * c);
                     for v in 0..c {
                         out.coefficients[to + v] =
                             d as f64 * (self.coefficients[hi + v] - self.coefficients[lo + v]);
@@ -321,7 +491,9 @@ impl Tensor {
             .iter()
             .skip(component)
             .step_by(self.components)
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &v| (lo.min(v), hi.max(v)))
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &v| {
+                (lo.min(v), hi.max(v))
+            })
     }
 
     /// Ordinary basis: the largest coefficient magnitude of component `component`.
@@ -335,14 +507,14 @@ impl Tensor {
     pub fn evaluate(&self, s: [f64; MAX_VARIABLES], out: &mut [f64]) {
         let c = self.components;
         let e = self.extents();
-        // Reduce variable 0, then 1, then 2, in a scratch copy.
-        let mut work = self.coefficients.clone();
+        // Reduce variable 0, then 1, then 2, in a scratch copy: after each variable the
+        // first coefficient of every fiber along it remains, and those are the next
+        // variable's fibers.
+        let mut work: SmallVec<[f64; 512]> = SmallVec::from_slice(&self.coefficients);
         let mut rows = e[1] * e[2];
         let mut length = e[0];
         for (k, &x) in s.iter().enumerate() {
             let d = self.degrees[k];
-            // `work` holds `rows` fibers of `length` coefficients along variable k, contiguous
-            // per fiber after the transposition below.
             for row in 0..rows {
                 let base = row * length * c;
                 for r in 1..=d {
@@ -354,13 +526,11 @@ impl Tensor {
                         }
                     }
                 }
+                // Compact: fiber `row`'s first coefficient moves to position `row`.
+                for v in 0..c {
+                    work[row * c + v] = work[base + v];
+                }
             }
-            // Keep the first coefficient of every fiber: the next variable's fibers.
-            let mut next = Vec::with_capacity(rows * c);
-            for row in 0..rows {
-                next.extend_from_slice(&work[row * length * c..row * length * c + c]);
-            }
-            work = next;
             if k + 1 < MAX_VARIABLES {
                 length = e[k + 1];
                 rows /= length;
@@ -410,12 +580,21 @@ mod tests {
         let c = Tensor::multi_affine([true, false, true], |s| 2.0 + s[2] * s[0]);
         let d = linear(1, 0.5, -0.5);
         let f = c.times(&b).times(&a).plus(&d.times(&d)).unscaled();
-        for s in [[0.0f64, 0.0, 0.0], [0.3, 0.7, 0.2], [1.0, 0.25, 0.9], [0.5, 1.0, 1.0]] {
-            let exact = (1.0 + 2.0 * s[0]) * (3.0 - s[1]) * (2.0 + s[2] * s[0])
-                + (0.5 - s[1]).powi(2);
+        for s in [
+            [0.0f64, 0.0, 0.0],
+            [0.3, 0.7, 0.2],
+            [1.0, 0.25, 0.9],
+            [0.5, 1.0, 1.0],
+        ] {
+            let exact =
+                (1.0 + 2.0 * s[0]) * (3.0 - s[1]) * (2.0 + s[2] * s[0]) + (0.5 - s[1]).powi(2);
             let mut value = [0.0];
             f.evaluate(s, &mut value);
-            assert!((value[0] - exact).abs() < 1e-13, "{s:?}: {} vs {exact}", value[0]);
+            assert!(
+                (value[0] - exact).abs() < 1e-13,
+                "{s:?}: {} vs {exact}",
+                value[0]
+            );
             assert!((brute(&f, s)[0] - exact).abs() < 1e-13);
         }
     }
@@ -424,10 +603,20 @@ mod tests {
     fn parts_derivatives_and_ranges_agree_with_the_polynomial() {
         let a = linear(0, -1.0, 2.0);
         let b = linear(1, 0.5, -1.5);
-        let f = a.times(&a).times(&b).plus(&Tensor::constant(&[0.25])).unscaled();
+        let f = a
+            .times(&a)
+            .times(&b)
+            .plus(&Tensor::constant(&[0.25]))
+            .unscaled();
         let value = |s: [f64; 3]| (-1.0 + 3.0 * s[0]).powi(2) * (0.5 - 2.0 * s[1]) + 0.25;
         for variable in 0..2 {
             let (left, right) = f.split(variable, 0.5);
+            let middle = f.part(variable, 0.25, 0.75);
+            for s in [[0.1, 0.6, 0.0], [0.9, 0.3, 0.0]] {
+                let mut inner = s;
+                inner[variable] = 0.25 + 0.5 * s[variable];
+                assert!((brute(&middle, s)[0] - value(inner)).abs() < 1e-13);
+            }
             for s in [[0.2, 0.9, 0.0], [0.75, 0.1, 0.0]] {
                 let mut inner = s;
                 inner[variable] = 0.5 * s[variable];
@@ -450,6 +639,41 @@ mod tests {
             for j in 0..=20 {
                 let v = value([i as f64 / 20.0, j as f64 / 20.0, 0.0]);
                 assert!(v >= lo - 1e-12 && v <= hi + 1e-12);
+            }
+        }
+    }
+
+    #[test]
+    fn a_factor_at_an_end_divides_out() {
+        // f = s^2 (1 + 2 s) and g = (1 - s)^3 (2 - s).
+        let s = linear(0, 0.0, 1.0);
+        let one_minus = linear(0, 1.0, 0.0);
+        let f = s.times(&s).times(&linear(0, 1.0, 3.0)).unscaled();
+        let g = one_minus
+            .times(&one_minus)
+            .times(&one_minus)
+            .times(&linear(0, 2.0, 1.0))
+            .unscaled();
+        for (tensor, at_start, k, rest) in [
+            (
+                f,
+                true,
+                2,
+                Box::new(|x: f64| 1.0 + 2.0 * x) as Box<dyn Fn(f64) -> f64>,
+            ),
+            (g, false, 3, Box::new(|x: f64| 2.0 - x)),
+        ] {
+            let divided = tensor.divided_at_end(k, at_start);
+            assert_eq!(divided.degrees[0], 1);
+            for x in [0.0, 0.3, 1.0] {
+                let mut v = [0.0];
+                divided.evaluate([x, 0.0, 0.0], &mut v);
+                assert!(
+                    (v[0] - rest(x)).abs() < 1e-14,
+                    "{x}: {} vs {}",
+                    v[0],
+                    rest(x)
+                );
             }
         }
     }

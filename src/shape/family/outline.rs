@@ -1,0 +1,317 @@
+//! Region outlines of the pairs of every family (docs/method.md §32): the set of targets a
+//! pair reaches is the image of its admissible knots ([`PairDomain`]) under `P`. Where the
+//! map does not fold, the outline is the image of the domain's boundary; where it folds, the
+//! image's outline also runs along fold curves, and the region is built as the union of the
+//! images of a refined mesh of the domain.
+//!
+//! Whether the map folds is decided by the sign of its Jacobian determinant, certified on
+//! the Bernstein form of `det(H, ∂H/∂s₀, ∂H/∂s₁)` (`H` the homogeneous point's numerator in
+//! the plane): all coefficients of one sign prove that it does not fold.
+
+use i_overlay::core::fill_rule::FillRule;
+use i_overlay::float::simplify::SimplifyShape;
+
+use super::domain::{PairDomain, point_at};
+use super::local::LocalProblem;
+use super::tensor::Tensor;
+use crate::spline::vector::{Point, dot, sub};
+
+/// Where the region lives: an origin and two orthonormal axes (the curve's plane).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PlaneFrame {
+    /// A point of the plane.
+    pub origin: Point,
+    /// First axis.
+    pub e1: Point,
+    /// Second axis.
+    pub e2: Point,
+}
+
+impl PlaneFrame {
+    /// Plane coordinates of a point.
+    pub fn coordinates(&self, p: Point) -> [f64; 2] {
+        let d = sub(p, self.origin);
+        [dot(d, self.e1), dot(d, self.e2)]
+    }
+
+    /// The point of plane coordinates `c`.
+    pub fn point(&self, c: [f64; 2]) -> Point {
+        [0, 1, 2].map(|k| self.origin[k] + c[0] * self.e1[k] + c[1] * self.e2[k])
+    }
+}
+
+/// One region's outline.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Outline {
+    /// Closed rings (first vertex repeated last) in the curve's coordinates: each outer ring
+    /// counter-clockwise in the plane, followed by its holes (clockwise).
+    pub rings: Vec<Vec<Point>>,
+    /// Whether the map folds (the outline then follows fold curves too).
+    pub folded: bool,
+    /// Whether the vertex budget allowed the tolerance everywhere.
+    pub tolerance_met: bool,
+}
+
+/// Initial pieces per edge of the unit square (boundary path).
+const EDGE_PIECES: usize = 8;
+
+/// Bisection depth limit.
+const MAX_DEPTH: u32 = 24;
+
+/// Initial cells per side of the mesh (folded path).
+const MESH_START: usize = 8;
+
+/// Leaf cells at most in the mesh (folded path).
+const MESH_BUDGET: usize = 4096;
+
+/// The outline of pair `unknowns` (local indices) of `problem` in `plane`, within
+/// `tolerance` (curve units), with at most `max_vertices` boundary vertices on the
+/// unfolded path.
+pub fn pair_outline(
+    problem: &LocalProblem,
+    unknowns: [usize; 2],
+    plane: &PlaneFrame,
+    tolerance: f64,
+    max_vertices: usize,
+) -> Option<Outline> {
+    let domain = PairDomain::new(problem, unknowns)?;
+    let map = |uv: (f64, f64)| plane.coordinates(point_at(problem, unknowns, &domain, uv));
+    let folded = !fold_free(problem, unknowns, plane);
+    let (contours, tolerance_met) = if folded {
+        mesh_triangles(&map, tolerance)
+    } else {
+        boundary(&map, tolerance, max_vertices)
+    };
+    let shapes = contours.simplify_shape(FillRule::NonZero);
+    // Holes thinner than the tolerance are the mesh's seams, not holes of the region.
+    let rings: Vec<Vec<Point>> = shapes
+        .into_iter()
+        .flat_map(|shape| {
+            shape.into_iter().enumerate().filter_map(|(index, ring)| {
+                let keep = index == 0 || area(&ring).abs() > tolerance * perimeter(&ring);
+                keep.then(|| {
+                    let mut closed: Vec<Point> = ring.iter().map(|&c| plane.point(c)).collect();
+                    if let Some(&first) = closed.first() {
+                        closed.push(first);
+                    }
+                    closed
+                })
+            })
+        })
+        .collect();
+    Some(Outline {
+        rings,
+        folded,
+        tolerance_met,
+    })
+}
+
+/// Signed area of a ring (counter-clockwise positive).
+fn area(ring: &[[f64; 2]]) -> f64 {
+    let n = ring.len();
+    0.5 * (0..n)
+        .map(|i| {
+            let (p, q) = (ring[i], ring[(i + 1) % n]);
+            p[0] * q[1] - q[0] * p[1]
+        })
+        .sum::<f64>()
+}
+
+/// Length of a closed ring.
+fn perimeter(ring: &[[f64; 2]]) -> f64 {
+    let n = ring.len();
+    (0..n)
+        .map(|i| {
+            let (p, q) = (ring[i], ring[(i + 1) % n]);
+            (q[0] - p[0]).hypot(q[1] - p[1])
+        })
+        .sum()
+}
+
+/// Distance from `p` to the segment `a`–`b`.
+fn to_segment(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
+    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+    let length = dx * dx + dy * dy;
+    let s = if length > 0.0 {
+        (((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / length).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (p[0] - a[0] - s * dx).hypot(p[1] - a[1] - s * dy)
+}
+
+/// The image of the unit square's boundary, sampled adaptively: one contour.
+fn boundary(
+    map: &impl Fn((f64, f64)) -> [f64; 2],
+    tolerance: f64,
+    max_vertices: usize,
+) -> (Vec<Vec<[f64; 2]>>, bool) {
+    let corners = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)];
+    let mut ring = Vec::new();
+    let mut budget = max_vertices.saturating_sub(4 * EDGE_PIECES + 1);
+    let mut met = true;
+    for (k, &from) in corners.iter().enumerate() {
+        let to = corners[(k + 1) % 4];
+        let at = |s: f64| (from.0 + s * (to.0 - from.0), from.1 + s * (to.1 - from.1));
+        for piece in 0..EDGE_PIECES {
+            let s0 = piece as f64 / EDGE_PIECES as f64;
+            let s1 = (piece + 1) as f64 / EDGE_PIECES as f64;
+            let start = map(at(s0));
+            ring.push(start);
+            refine(
+                map,
+                &at,
+                (s0, start),
+                (s1, map(at(s1))),
+                tolerance,
+                0,
+                &mut budget,
+                &mut met,
+                &mut ring,
+            );
+        }
+    }
+    (vec![ring], met)
+}
+
+/// Appends the interior samples of the edge piece `from`–`to` (its end excluded).
+#[allow(clippy::too_many_arguments)]
+fn refine(
+    map: &impl Fn((f64, f64)) -> [f64; 2],
+    at: &impl Fn(f64) -> (f64, f64),
+    from: (f64, [f64; 2]),
+    to: (f64, [f64; 2]),
+    tolerance: f64,
+    depth: u32,
+    budget: &mut usize,
+    met: &mut bool,
+    ring: &mut Vec<[f64; 2]>,
+) {
+    let s = 0.5 * (from.0 + to.0);
+    let middle = map(at(s));
+    if to_segment(middle, from.1, to.1) <= tolerance {
+        return;
+    }
+    if depth >= MAX_DEPTH || *budget == 0 {
+        *met = false;
+        return;
+    }
+    *budget -= 1;
+    refine(
+        map,
+        at,
+        from,
+        (s, middle),
+        tolerance,
+        depth + 1,
+        budget,
+        met,
+        ring,
+    );
+    ring.push(middle);
+    refine(
+        map,
+        at,
+        (s, middle),
+        to,
+        tolerance,
+        depth + 1,
+        budget,
+        met,
+        ring,
+    );
+}
+
+/// The images of a mesh of the unit square, refined where a cell's image is not flat
+/// within the tolerance, as counter-clockwise triangles.
+fn mesh_triangles(
+    map: &impl Fn((f64, f64)) -> [f64; 2],
+    tolerance: f64,
+) -> (Vec<Vec<[f64; 2]>>, bool) {
+    let mut cells: Vec<(f64, f64, f64)> = Vec::new(); // (u0, v0, size)
+    let step = 1.0 / MESH_START as f64;
+    for i in 0..MESH_START {
+        for j in 0..MESH_START {
+            cells.push((i as f64 * step, j as f64 * step, step));
+        }
+    }
+    let mut triangles = Vec::new();
+    let mut met = true;
+    while let Some((u0, v0, h)) = cells.pop() {
+        let corner = [
+            map((u0, v0)),
+            map((u0 + h, v0)),
+            map((u0 + h, v0 + h)),
+            map((u0, v0 + h)),
+        ];
+        let centre = map((u0 + 0.5 * h, v0 + 0.5 * h));
+        let bilinear = [0, 1].map(|c| 0.25 * corner.iter().map(|p| p[c]).sum::<f64>());
+        let mut flat = (centre[0] - bilinear[0]).hypot(centre[1] - bilinear[1]) <= tolerance;
+        for k in 0..4 {
+            if !flat {
+                break;
+            }
+            let (a, b) = (corner[k], corner[(k + 1) % 4]);
+            let (du, dv) = [(0.5, 0.0), (1.0, 0.5), (0.5, 1.0), (0.0, 0.5)][k];
+            let middle = map((u0 + du * h, v0 + dv * h));
+            flat = to_segment(middle, a, b) <= tolerance;
+        }
+        if !flat && triangles.len() / 2 + cells.len() + 4 <= MESH_BUDGET && h > 1e-6 {
+            let g = 0.5 * h;
+            cells.extend([
+                (u0, v0, g),
+                (u0 + g, v0, g),
+                (u0, v0 + g, g),
+                (u0 + g, v0 + g, g),
+            ]);
+            continue;
+        }
+        if !flat {
+            met = false;
+        }
+        for triangle in [
+            [corner[0], corner[1], corner[2]],
+            [corner[0], corner[2], corner[3]],
+        ] {
+            let signed = area(&triangle);
+            if signed > 0.0 {
+                triangles.push(triangle.to_vec());
+            } else if signed < 0.0 {
+                triangles.push(vec![triangle[0], triangle[2], triangle[1]]);
+            }
+        }
+    }
+    (triangles, met)
+}
+
+/// Whether the map of pair `unknowns` provably does not fold on its search box: the
+/// Bernstein coefficients of its Jacobian determinant (of the homogeneous numerator's plane
+/// coordinates) all have one sign.
+fn fold_free(problem: &LocalProblem, unknowns: [usize; 2], plane: &PlaneFrame) -> bool {
+    let Some(search) = problem.search_box(&unknowns, 0.0, 0.0) else {
+        return true;
+    };
+    let numerator = problem.numerator(&search);
+    let o = plane.origin;
+    let coordinate = |e: Point| {
+        numerator.combine(&[e[0], e[1], e[2], -(e[0] * o[0] + e[1] * o[1] + e[2] * o[2])])
+    };
+    let x = coordinate(plane.e1);
+    let y = coordinate(plane.e2);
+    let w = numerator.combine(&[0.0, 0.0, 0.0, 1.0]);
+    let parts = [x, y, w];
+    let d0: Vec<Tensor> = parts.iter().map(|t| t.derivative(0).scaled()).collect();
+    let d1: Vec<Tensor> = parts.iter().map(|t| t.derivative(1).scaled()).collect();
+    let values: Vec<Tensor> = parts.into_iter().map(Tensor::scaled).collect();
+    let minus = Tensor::constant(&[-1.0]);
+    let cofactor =
+        |i: usize, j: usize| d0[i].times(&d1[j]).plus(&d0[j].times(&d1[i]).times(&minus));
+    let determinant = values[0]
+        .times(&cofactor(1, 2))
+        .plus(&values[1].times(&cofactor(2, 0)))
+        .plus(&values[2].times(&cofactor(0, 1)))
+        .unscaled();
+    let (lo, hi) = determinant.range(0);
+    let margin = 1e-10 * lo.abs().max(hi.abs());
+    lo > margin || hi < -margin
+}
