@@ -4,11 +4,12 @@
 //! of both curves and a dense grid, on random curves of degrees 1–6, rational or not, 2D or
 //! 3D, clamped or not, in both knot conventions.
 
-use knotshape::spline::{Curve, CurveLimits, KnotConvention};
+use knotshape::spline::{Curve, CurveLimits, EXACT_REMOVAL_ALLOWANCE, KnotConvention};
 use proptest::collection::vec;
 use proptest::prelude::*;
 
 use super::config;
+use super::corpus::split_mix;
 use super::generators::{CaseOptions, CurveCase, curve_case};
 use super::reference::{P3, Reference};
 
@@ -247,4 +248,90 @@ proptest! {
             start = end;
         }
     }
+}
+
+/// The rounding that tolerance 0 allows for, measured (docs/method.md §26): random
+/// insert-then-remove cases (2,000, or `REMOVAL_CASES`) of degrees 1–7, 3D, half rational with
+/// weights up to `10⁶` apart, a third of them up to `10⁴` of their size away from the origin,
+/// clamped or not, each value inserted up to `p` times, often next to a knot of the curve;
+/// every inserted knot comes out as often as it went in and nothing else does, and the
+/// certified bound stays below a fifth of the allowance (`2e-13` of the rounding scale
+/// `M w_max / w_min`). `--nocapture` prints the largest ratio.
+#[test]
+fn exact_removals_stay_far_below_the_allowance() {
+    let mut state = 0x0030_u64;
+    let mut unit = || {
+        state = split_mix(state);
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let total: usize = std::env::var("REMOVAL_CASES")
+        .ok()
+        .and_then(|n| n.parse().ok())
+        .unwrap_or(2_000);
+    let (mut worst, mut cases) = (0.0f64, 0);
+    for case in 0..total {
+        let p = 1 + case % 7;
+        let count = p + 1 + (unit() * 12.0) as usize;
+        let size = 10f64.powf(unit() * 6.0 - 3.0);
+        let offset = if case % 3 == 0 {
+            size * 10f64.powf(unit() * 4.0)
+        } else {
+            0.0
+        };
+        let points: Vec<[f64; 3]> = (0..count)
+            .map(|_| {
+                [
+                    offset + (unit() - 0.5) * size,
+                    (unit() - 0.5) * size,
+                    (unit() - 0.5) * size,
+                ]
+            })
+            .collect();
+        let weights: Vec<f64> = (0..count)
+            .map(|_| 10f64.powf((unit() - 0.5) * 6.0))
+            .collect();
+        let clamped = case % 2 == 0;
+        let mut knots: Vec<f64> = if clamped {
+            let interior = (0..count - p - 1).map(|_| unit());
+            std::iter::repeat_n(0.0, p + 1)
+                .chain(interior)
+                .chain(std::iter::repeat_n(1.0, p + 1))
+                .collect()
+        } else {
+            (0..count + p + 1).map(|_| unit() * 1.6 - 0.3).collect()
+        };
+        knots.sort_by(f64::total_cmp);
+        let rational = case % 4 < 2;
+        let Ok(curve) = Curve::new(
+            p,
+            &points,
+            &knots,
+            rational.then_some(&weights[..]),
+            &CurveLimits::default(),
+        ) else {
+            continue;
+        };
+        let (lo, hi) = curve.domain();
+        let mut inserted = Vec::new();
+        for _ in 0..1 + (unit() * 4.0) as usize {
+            let u = lo + (0.1 + 0.8 * unit()) * (hi - lo);
+            let times = 1 + (unit() * p as f64) as usize;
+            let room = p.saturating_sub(multiplicity(curve.knots(), u));
+            inserted.extend(std::iter::repeat_n(u, times.min(room)));
+        }
+        inserted.sort_by(f64::total_cmp);
+        let refined = curve.insert_knots(&inserted, 100_000).unwrap();
+        let removal = refined.remove_knots(0.0, None).unwrap();
+        assert_eq!(removal.removed, inserted, "case {case}");
+        // The bound in units of the rounding scale `M w_max / w_min`.
+        let ratio = removal.max_deviation * EXACT_REMOVAL_ALLOWANCE / curve.removal_allowance();
+        assert!(
+            ratio <= EXACT_REMOVAL_ALLOWANCE / 5.0,
+            "case {case}: {ratio:e}"
+        );
+        worst = worst.max(ratio);
+        cases += 1;
+    }
+    assert!(cases * 20 > total * 19, "{cases} of {total}");
+    println!("{cases} cases: largest certified bound / (M w_max / w_min) = {worst:.2e}");
 }
