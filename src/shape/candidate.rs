@@ -231,3 +231,49 @@ pub fn frame_to_point(curve: &Curve, span: usize, x: f64, y: f64) -> Point {
         numerator
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::spline::CurveLimits;
+
+    /// Both sides of a cubic at any parameter of its domain have a control triangle (the
+    /// span `m` of `t` lies in `[p, n]`, so `2 <= j <= n` for `j = m − 1` and `j = m`): the
+    /// answers always carry `triangle`, and, with a planar target, an applicable side its
+    /// frame (the OpenAPI document requires both).
+    #[test]
+    fn every_side_of_a_cubic_has_a_triangle_and_an_applicable_one_a_frame() {
+        let points = [[0.0, 0.0], [1.0, 2.0], [3.0, 2.5], [4.0, 0.0], [6.0, 1.0]];
+        let limits = CurveLimits::default();
+        let curves = [
+            // One Bézier piece (n = p), clamped.
+            Curve::new(
+                3,
+                &points[..4],
+                &[0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0],
+                None,
+                &limits,
+            ),
+            // Unclamped, two spans.
+            Curve::new(
+                3,
+                &points,
+                &[0.0, 0.1, 0.2, 0.3, 0.6, 0.8, 0.9, 1.0, 1.2],
+                None,
+                &limits,
+            ),
+        ];
+        for curve in curves {
+            let curve = curve.unwrap();
+            let (lo, hi) = curve.domain();
+            for k in 0..=20 {
+                let t = lo + (hi - lo) * f64::from(k) / 20.0;
+                for side in [Side::Left, Side::Right] {
+                    let found = candidate(&curve, t, side, Some([2.0, 1.0, 0.0]));
+                    assert!(found.triangle.is_some(), "{t} {side:?}: {found:?}");
+                    assert_eq!(found.frame.is_some(), found.is_applicable(), "{t} {side:?}");
+                }
+            }
+        }
+    }
+}

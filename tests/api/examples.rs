@@ -1,7 +1,8 @@
-//! Every request body in `examples/` (the README's curl examples) posted to the real server:
-//! a 200 with a sensible body. A file `<group>-<endpoint>[-variant].json` goes to
-//! `/v1/<group>/<endpoint>` (the longest documented route that the name starts with, so
-//! `curves-closest-point.json` goes to `/v1/curves/closest-point`).
+//! Every request body in `examples/` (the curl examples of README.md and docs/api.md) posted
+//! to the real server: a 200 with a sensible body. A file
+//! `<group>-<endpoint>[-variant].json` goes to `/v1/<group>/<endpoint>` (the longest documented
+//! route that the name starts with, so `curves-closest-point.json` goes to
+//! `/v1/curves/closest-point`).
 
 use serde_json::Value;
 

@@ -243,8 +243,8 @@ pub fn many_poles(n: usize) -> Value {
 }
 
 /// Saves a screenshot of the page as `target/<name>`; one `for_docs` also as
-/// `docs/pictures/<name>` when `UPDATE_PICTURES` is set (the README's pictures:
-/// `UPDATE_PICTURES=1 cargo test --test editor`).
+/// `docs/pictures/<name>` when `UPDATE_PICTURES` is set (the pictures of README.md and
+/// docs/editor.md: `UPDATE_PICTURES=1 cargo test --test editor`).
 pub async fn screenshot(client: &fantoccini::Client, name: &str, for_docs: bool) {
     let png = client.screenshot().await.expect("screenshot");
     std::fs::create_dir_all(target_dir()).unwrap();

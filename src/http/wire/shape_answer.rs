@@ -50,11 +50,13 @@ pub struct CandidateBody {
     /// Index of the knot set to `t`, in the caller's knot convention.
     #[schema(example = 5)]
     pub moved_knot: usize,
-    /// The control points `d_{j-2}, d_{j-1}, d_j`.
+    /// The control points `d_{j-2}, d_{j-1}, d_j` (every side has them, also one that does
+    /// not apply; the OpenAPI document requires them).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     #[schema(value_type = Option<Vec<Vec<f64>>>)]
     pub triangle: Option<[WirePoint; 3]>,
-    /// The target's frame coordinates (membership and solve, applicable sides).
+    /// The target's frame coordinates: in membership and solve answers on every applicable
+    /// side (required there), never in regions answers (which have no target).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub frame: Option<FrameBody>,
 }
