@@ -6,6 +6,7 @@
 pub(crate) mod domain;
 pub(crate) mod isolate;
 pub(crate) mod local;
+pub(crate) mod nearest;
 pub(crate) mod outline;
 pub(crate) mod problems;
 pub(crate) mod regions;
@@ -13,6 +14,7 @@ pub(crate) mod roots;
 pub(crate) mod solve;
 pub(crate) mod tensor;
 
+pub use nearest::{FamilyNearest, nearest_across_families};
 pub use outline::Outline;
 pub use problems::{Family, FamilyChoice, FamilyNotApplicable, FamilyProblem};
 pub use regions::{FamilyRegions, SetRegion, family_regions};

@@ -301,7 +301,7 @@ fn accepted_residual(control_points: &[Point], target: Point) -> f64 {
 /// the new knot vector is not monotone or not finite, its domain is empty or (under
 /// `keep_domain`) moved, a knot value's multiplicity grows past `p`, or the new curve,
 /// evaluated by the spline core at `t`, misses the target by more than `accepted`.
-fn full_solution(
+pub(crate) fn full_solution(
     query: &ShapeQuery,
     problem: &FamilyProblem,
     local: &LocalProblem,
