@@ -1,6 +1,6 @@
 //! Certified root isolation for a square polynomial system `F: [0, 1]^N → R^N`, `N ≤ 3`, given
 //! in tensor Bernstein form ([`super::tensor`]): subdivision with two tests per box
-//! (docs/method.md §31.3).
+//! (docs/method.md §31.4).
 //!
 //! * **Exclusion**: a component whose Bernstein coefficients on the box all have one sign
 //!   (beyond a rounding margin) has no zero there (convex hull property).

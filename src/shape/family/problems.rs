@@ -1,5 +1,5 @@
 //! The knot families and the local problem each poses at a picked parameter (docs/method.md
-//! §31.1–§31.2): which knots are relevant, which control points act, and which sets of
+//! §30): which knots are relevant, which control points act, and which sets of
 //! unknowns (pairs, triples) may move.
 
 use super::local::LocalProblem;

@@ -1,4 +1,4 @@
-//! Every admissible solution of one set of unknown knots (docs/method.md §31.3): closed forms
+//! Every admissible solution of one set of unknown knots (docs/method.md §31.4): closed forms
 //! where they exist (`q = 2`: the paper's six; the outermost pair of any degree: a 2 × 2
 //! linear system), certified subdivision ([`super::isolate`]) for the rest, each root then
 //! polished by Newton's method on de Boor itself and checked against the admissible box.
@@ -162,7 +162,7 @@ fn subdivision(
         .collect()
 }
 
-/// A pair with one outermost knot (docs/method.md §31.3): that knot enters one ratio only,
+/// A pair with one outermost knot (docs/method.md §31.4): that knot enters one ratio only,
 /// `α_A = α_{1,1}` for `t_1` (`α_{q,1}` for `t_{2q}`), and the homogeneous point is affine in
 /// it, `H = H_0(b) + α_A (H_1(b) - H_0(b))` with `b` the other knot. The equations
 /// `F_0(b) + α_A G(b) = 0` (`G = F_1 - F_0`, both projected) hold exactly when
@@ -341,7 +341,7 @@ fn quadratic(
         .collect()
 }
 
-/// The outermost pair `(t_1, t_{2q})` (docs/method.md §31.3): each enters one ratio only,
+/// The outermost pair `(t_1, t_{2q})` (docs/method.md §31.4): each enters one ratio only,
 /// `α_A = α_{1,1}` and `α_B = α_{q,1}`, and the homogeneous point is affine in the two
 /// together, `H = H_00 + α_A (H_10 - H_00) + α_B (H_01 - H_00)`, so `rows · (X - p W) = 0` is a
 /// 2 × 2 linear system; then `t_1 = (ũ - α_A t_{q+1}) / (1 - α_A)` and
