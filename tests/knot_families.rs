@@ -247,10 +247,16 @@ fn a_planted_triple_is_found_on_a_3d_cubic() {
     let points: Vec<[f64; 3]> = (0..9)
         .map(|i| {
             let a = 0.8 * i as f64;
-            [3.0 * a.cos(), 3.0 * a.sin(), 0.6 * i as f64 + 0.3 * (1.7 * a).sin()]
+            [
+                3.0 * a.cos(),
+                3.0 * a.sin(),
+                0.6 * i as f64 + 0.3 * (1.7 * a).sin(),
+            ]
         })
         .collect();
-    let knots = [0.0, 0.0, 0.0, 0.0, 0.15, 0.3, 0.45, 0.6, 0.8, 1.0, 1.0, 1.0, 1.0];
+    let knots = [
+        0.0, 0.0, 0.0, 0.0, 0.15, 0.3, 0.45, 0.6, 0.8, 1.0, 1.0, 1.0, 1.0,
+    ];
     let cubic = Curve::new(3, &points, &knots, None, &CurveLimits::default()).unwrap();
     let t = 0.4; // span 5 (u_5 = 0.3 ≤ t < u_6 = 0.45): relevant knots u_3 … u_8
     let mut planted = knots.to_vec();
@@ -266,10 +272,17 @@ fn a_planted_triple_is_found_on_a_3d_cubic() {
         .filter(|s| s.family == Family::Triples && s.knots_moved.indices() == [5, 6, 7])
         .collect();
     assert!(!found.is_empty(), "{:#?}", outcome.solutions);
-    assert!(found.iter().any(|s| (5..=7).all(|k| (s.knots[k] - planted[k]).abs() < 1e-9)));
+    assert!(
+        found
+            .iter()
+            .any(|s| (5..=7).all(|k| (s.knots[k] - planted[k]).abs() < 1e-9))
+    );
     for solution in &outcome.solutions {
         let point = de_boor(&cubic, &solution.knots, t).unwrap();
-        let miss = (0..3).map(|c| (point[c] - target[c]).powi(2)).sum::<f64>().sqrt();
+        let miss = (0..3)
+            .map(|c| (point[c] - target[c]).powi(2))
+            .sum::<f64>()
+            .sqrt();
         assert!(miss < 1e-12, "{solution:?}");
     }
 }
@@ -284,10 +297,24 @@ fn the_nearest_point_across_families_beats_a_brute_force_lattice() {
     let quintic = curve(
         5,
         &[
-            [0.0, 0.0], [1.0, 1.5], [2.0, 2.5], [3.2, 3.0], [4.5, 2.8], [5.5, 1.8], [6.3, 0.6],
-            [7.5, 0.2], [8.8, 0.9], [9.8, 2.2], [11.0, 3.0], [12.2, 2.6], [13.0, 1.2],
+            [0.0, 0.0],
+            [1.0, 1.5],
+            [2.0, 2.5],
+            [3.2, 3.0],
+            [4.5, 2.8],
+            [5.5, 1.8],
+            [6.3, 0.6],
+            [7.5, 0.2],
+            [8.8, 0.9],
+            [9.8, 2.2],
+            [11.0, 3.0],
+            [12.2, 2.6],
+            [13.0, 1.2],
         ],
-        &[0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.12, 0.25, 0.4, 0.5, 0.62, 0.75, 0.88, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0],
+        &[
+            0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.12, 0.25, 0.4, 0.5, 0.62, 0.75, 0.88, 1.0, 1.0, 1.0,
+            1.0, 1.0, 1.0,
+        ],
     );
     let p = 5;
     let n = 12;
@@ -297,7 +324,10 @@ fn the_nearest_point_across_families_beats_a_brute_force_lattice() {
     // The brute force: each family's pairs over a lattice of their knots.
     let mut reachable: Vec<[f64; 3]> = Vec::new();
     let mut lattice = |base: &[f64], relevant: Vec<usize>, span: (usize, usize)| {
-        let movable: Vec<usize> = relevant.into_iter().filter(|&k| k != p && k != n + 1).collect();
+        let movable: Vec<usize> = relevant
+            .into_iter()
+            .filter(|&k| k != p && k != n + 1)
+            .collect();
         for (x, &a) in movable.iter().enumerate() {
             for &b in &movable[x + 1..] {
                 let (lo_a, hi_a) = (base[a - 1], base[a + 1]);
@@ -337,9 +367,16 @@ fn the_nearest_point_across_families_beats_a_brute_force_lattice() {
         let nearest = nearest_across_families(&query, FamilyChoice::Default, target).unwrap();
         let first = &nearest.solutions[0];
         let point = de_boor(&quintic, &first.knots, t).unwrap();
-        assert!((point[0] - nearest.point[0]).abs() < 1e-12 && (point[1] - nearest.point[1]).abs() < 1e-12);
-        let distance = |q: [f64; 3]| ((q[0] - target[0]).powi(2) + (q[1] - target[1]).powi(2)).sqrt();
-        let brute = reachable.iter().map(|&q| distance(q)).fold(f64::INFINITY, f64::min);
+        assert!(
+            (point[0] - nearest.point[0]).abs() < 1e-12
+                && (point[1] - nearest.point[1]).abs() < 1e-12
+        );
+        let distance =
+            |q: [f64; 3]| ((q[0] - target[0]).powi(2) + (q[1] - target[1]).powi(2)).sqrt();
+        let brute = reachable
+            .iter()
+            .map(|&q| distance(q))
+            .fold(f64::INFINITY, f64::min);
         assert!(
             distance(nearest.point) <= brute + 1e-9,
             "({dx}, {dy}): nearest {} vs lattice {brute}",

@@ -138,7 +138,9 @@ impl EditMethod for KnotPairs {
         let curve = edit.query.curve;
         let query = &edit.query;
         let envelope = (curve.degree() == 3
-            && query.families.includes(super::family::Family::Envelope, curve))
+            && query
+                .families
+                .includes(super::family::Family::Envelope, curve))
         .then(|| nearest_reachable(query, target, false).ok().flatten())
         .flatten()
         .map(|nearest| MethodNearest {
@@ -149,16 +151,15 @@ impl EditMethod for KnotPairs {
                 .filter_map(|s| envelope_edit_solution(curve, s))
                 .collect(),
         });
-        let families = nearest_across_families(query, query.families, target).map(|nearest| {
-            MethodNearest {
+        let families =
+            nearest_across_families(query, query.families, target).map(|nearest| MethodNearest {
                 point: nearest.point,
                 solutions: nearest
                     .solutions
                     .into_iter()
                     .filter_map(|s| edit_solution(curve, s))
                     .collect(),
-            }
-        });
+            });
         match (envelope, families) {
             (Some(a), Some(b)) => Some(if distance(a.point, target) <= distance(b.point, target) {
                 a

@@ -378,7 +378,9 @@ async fn knots_on_a_polyline_say_which_methods_take_it() {
         assert_problem(422, &body, Some("/curve/degree"));
         let detail = body["errors"][0]["detail"].as_str().unwrap();
         assert!(
-            detail.contains("control_points") && detail.contains("weights") && detail.contains("polyline"),
+            detail.contains("control_points")
+                && detail.contains("weights")
+                && detail.contains("polyline"),
             "{detail}"
         );
         request["methods"] = json!(["weights"]);
@@ -397,7 +399,10 @@ async fn knots_on_a_polyline_say_which_methods_take_it() {
             .iter()
             .map(|f| f["family"].as_str().unwrap())
             .collect();
-        assert!(families.contains(&"envelope") && families.contains(&"direct"), "{path}: {families:?}");
+        assert!(
+            families.contains(&"envelope") && families.contains(&"direct"),
+            "{path}: {families:?}"
+        );
     }
 }
 

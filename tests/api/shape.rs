@@ -311,10 +311,19 @@ async fn the_worked_examples_are_reproduced_over_http() {
         let (status, every_family) = app.post_json("/v1/shape/solve", &request).await;
         assert_eq!(status, 200, "{note}: {every_family}");
         for solution in body["solutions"].as_array().unwrap() {
-            let same = every_family["solutions"].as_array().unwrap().iter().any(|s| {
-                s["region"] == solution["region"] && s["side"] == solution["side"] && s["knots"] == solution["knots"]
-            });
-            assert!(same, "{note}: {solution} missing from the answer with every family");
+            let same = every_family["solutions"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .any(|s| {
+                    s["region"] == solution["region"]
+                        && s["side"] == solution["side"]
+                        && s["knots"] == solution["knots"]
+                });
+            assert!(
+                same,
+                "{note}: {solution} missing from the answer with every family"
+            );
         }
         assert_eq!(every_family["candidates"], body["candidates"], "{note}");
         let candidates = body["candidates"].as_array().unwrap();

@@ -70,8 +70,14 @@ pub fn nearest_across_families(
         {
             continue;
         }
-        let Some(local) = &problem.problem else { continue };
-        let size = if problem.family == Family::Triples { 3 } else { 2 };
+        let Some(local) = &problem.problem else {
+            continue;
+        };
+        let size = if problem.family == Family::Triples {
+            3
+        } else {
+            2
+        };
         if size == 3 && curve.dimension().count() != 3 {
             continue;
         }
@@ -94,16 +100,24 @@ pub fn nearest_across_families(
     candidates.sort_by(|a, b| a.distance.total_cmp(&b.distance));
     for candidate in candidates {
         let problem = &problems[candidate.group];
-        let Some(local) = &problem.problem else { continue };
+        let Some(local) = &problem.problem else {
+            continue;
+        };
         let point = local.point(&candidate.knots);
         let root = LocalRoot {
             knots: candidate.knots,
             certified: false,
         };
         let accepted = 1e-9 * super::problems::extent(&problem.control_points()) + 1e-12;
-        let Some(mut solution) =
-            full_solution(query, problem, local, &candidate.unknowns, &root, point, accepted)
-        else {
+        let Some(mut solution) = full_solution(
+            query,
+            problem,
+            local,
+            &candidate.unknowns,
+            &root,
+            point,
+            accepted,
+        ) else {
             continue;
         };
         let reached = solution.point;
@@ -197,7 +211,11 @@ fn descend(
 }
 
 /// The best points of pair `unknowns`: `(distance, local knots)` for up to [`STARTS`] starts.
-fn nearest_on_pair(local: &LocalProblem, unknowns: &[usize], target: Point) -> Vec<(f64, Vec<f64>)> {
+fn nearest_on_pair(
+    local: &LocalProblem,
+    unknowns: &[usize],
+    target: Point,
+) -> Vec<(f64, Vec<f64>)> {
     let pair = [unknowns[0], unknowns[1]];
     let Some(domain) = PairDomain::new(local, pair) else {
         return Vec::new();

@@ -263,7 +263,12 @@ fn mesh_polygons(
             let negative = signs.iter().all(|&d| d < 0.0);
             if positive || negative {
                 let mut ring = Vec::new();
-                let corners = [(i0, j0), (i0 + LATTICE, j0), (i0 + LATTICE, j0 + LATTICE), (i0, j0 + LATTICE)];
+                let corners = [
+                    (i0, j0),
+                    (i0 + LATTICE, j0),
+                    (i0 + LATTICE, j0 + LATTICE),
+                    (i0, j0 + LATTICE),
+                ];
                 for k in 0..4 {
                     let (a, b) = (corners[k], corners[(k + 1) % 4]);
                     for piece in 0..LATTICE {
@@ -277,7 +282,17 @@ fn mesh_polygons(
                         let along = |s: f64| (s0.0 + s * (s1.0 - s0.0), s0.1 + s * (s1.1 - s0.1));
                         let start = map(s0);
                         ring.push(start);
-                        refine(map, &along, (0.0, start), (1.0, map(s1)), tolerance, 0, &mut budget, &mut met, &mut ring);
+                        refine(
+                            map,
+                            &along,
+                            (0.0, start),
+                            (1.0, map(s1)),
+                            tolerance,
+                            0,
+                            &mut budget,
+                            &mut met,
+                            &mut ring,
+                        );
                     }
                 }
                 if area(&ring) < 0.0 {
@@ -290,7 +305,8 @@ fn mesh_polygons(
                         let (i, j) = (i0 + di, j0 + dj);
                         let mut quad = vec![at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)];
                         let middle = map(((i as f64 + 0.5) * step, (j as f64 + 0.5) * step));
-                        let bilinear = [0, 1].map(|c| 0.25 * quad.iter().map(|p| p[c]).sum::<f64>());
+                        let bilinear =
+                            [0, 1].map(|c| 0.25 * quad.iter().map(|p| p[c]).sum::<f64>());
                         if (middle[0] - bilinear[0]).hypot(middle[1] - bilinear[1]) > tolerance {
                             met = false;
                         }
