@@ -384,3 +384,25 @@ fn the_nearest_point_across_families_beats_a_brute_force_lattice() {
         );
     }
 }
+
+/// Triples on a 2D curve, when asked: two equations in three knots leave a curve of
+/// solutions, and the answer holds its points where the knots' change is stationary; each is
+/// a solution (the test's de Boor) and moves three of the six knots nearest t.
+#[test]
+fn triples_asked_on_a_2d_curve_give_stationary_solutions() {
+    let cubic = example_cubic();
+    let found = solutions(&cubic, 0.42, [6.0, 1.3], Family::Triples, SideChoice::Both);
+    assert!(!found.is_empty());
+    for solution in &found {
+        assert_eq!(solution.family, Family::Triples);
+        assert_eq!(solution.knots_moved.indices().len(), 3);
+        assert!(
+            solution
+                .knots_moved
+                .indices()
+                .iter()
+                .all(|&k| (4..=9).contains(&k))
+        );
+        assert!(solution.knots.windows(2).all(|w| w[0] <= w[1]));
+    }
+}

@@ -114,7 +114,10 @@ fn knot_family_work(curve: &crate::http::curve::CurveBody, per_set: usize) -> us
         return 0;
     }
     let pairs = (2 * p) * (2 * p - 1) / 2 + if p >= 3 { (2 * p - 2) * (2 * p - 3) } else { 0 };
-    let three_d = curve.control_points.first().is_some_and(|point| point.len() == 3);
+    let three_d = curve
+        .control_points
+        .first()
+        .is_some_and(|point| point.len() == 3);
     let triples = if three_d { 20 } else { 0 };
     (pairs + 10 * triples)
         .saturating_mul((2 * p) * (2 * p))
