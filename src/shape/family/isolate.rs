@@ -469,7 +469,8 @@ pub fn refine(system: &Tensor, n: usize, start: [f64; MAX_VARIABLES]) -> [f64; M
         }
         let mut next_value = [0.0; MAX_VARIABLES];
         system.evaluate(next, &mut next_value);
-        if !(size(&next_value) < size(&value)) {
+        let (after, before) = (size(&next_value), size(&value));
+        if after.is_nan() || after >= before {
             break;
         }
         x = next;

@@ -105,6 +105,10 @@ fn invert_collocation(n: usize) -> Vec<f64> {
     inverse
 }
 
+/// One ratio of de Boor's triangle as polynomials: its left factor `t_hi - ũ`, right factor
+/// `ũ - t_lo` and denominator (`None` when it is 1).
+type RatioFactors = (Tensor, Tensor, Option<Tensor>);
+
 /// The primitive `Π_q(ũ)` of one family at one picked parameter.
 #[derive(Debug, Clone, PartialEq)]
 pub struct LocalProblem {
@@ -322,7 +326,7 @@ impl LocalProblem {
             } else {
                 lo = lo.max(u);
             }
-            if !(hi >= lo) {
+            if hi < lo {
                 return None;
             }
             admissible.push((lo, hi));
@@ -617,8 +621,7 @@ impl LocalProblem {
             .map(|(a, b)| (search.unknowns[a], search.unknowns[b]));
         // Per ratio: (left factor, right factor, denominator) — `None` denominators are 1.
         // Index [l][r].
-        let mut factors: Vec<Vec<Option<(Tensor, Tensor, Option<Tensor>)>>> =
-            vec![vec![None; q + 1]; q + 1];
+        let mut factors: Vec<Vec<Option<RatioFactors>>> = vec![vec![None; q + 1]; q + 1];
         let lambda_tensor = |search: &SearchBox, (_, b): (usize, usize)| {
             let (lo, hi) = search.bounds[b];
             let mut mask = [false; MAX_VARIABLES];

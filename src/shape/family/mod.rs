@@ -3,6 +3,10 @@
 //! one primitive they all solve ([`local`]), and a certified solver for its equations
 //! ([`tensor`], [`isolate`]).
 
+// Index loops over the small fixed-size vectors and matrices of the solver read as the
+// formulas they implement.
+#![allow(clippy::needless_range_loop)]
+
 pub(crate) mod domain;
 pub(crate) mod isolate;
 pub(crate) mod local;

@@ -262,7 +262,7 @@ pub fn plane_of(points: &[Point]) -> Option<[Point; 3]> {
         }
     }
     let (area, normal, edge) = best;
-    if !(area > COLLINEAR_TOLERANCE * size * size) {
+    if area.is_nan() || area <= COLLINEAR_TOLERANCE * size * size {
         return None;
     }
     let unit = |v: Point| {

@@ -307,7 +307,8 @@ fn polish_underdetermined(
         }
         let next = sub(problem.point(&trial), target);
         let next_r = [dot(rows[0], next), dot(rows[1], next)];
-        if !(next_r[0].hypot(next_r[1]) < r[0].hypot(r[1])) {
+        let (after, before) = (next_r[0].hypot(next_r[1]), r[0].hypot(r[1]));
+        if after.is_nan() || after >= before {
             break;
         }
         knots.copy_from_slice(&trial);
@@ -397,7 +398,7 @@ fn one_outermost(
         g0.evaluate(s, &mut w0);
         g1.evaluate(s, &mut w1);
         let norm = w0[0] * w0[0] + w1[0] * w1[0];
-        if !(norm > 0.0) {
+        if norm.is_nan() || norm <= 0.0 {
             continue;
         }
         let alpha = -(v0[0] * w0[0] + v1[0] * w1[0]) / norm;
@@ -426,7 +427,7 @@ fn disordered(
     let unknowns = &search.unknowns;
     let n = unknowns.len();
     let pairs: Vec<(usize, usize)> = (1..n)
-        .filter(|&k| unknowns[k] == unknowns[k - 1] + 1 && !(search.blow_up == Some((k - 1, k))))
+        .filter(|&k| unknowns[k] == unknowns[k - 1] + 1 && search.blow_up != Some((k - 1, k)))
         .map(|k| (unknowns[k - 1], unknowns[k]))
         .collect();
     if pairs.is_empty() {
@@ -580,7 +581,8 @@ fn polish(
         }
         let (point, trial_partials) = problem.point_and_partials(&trial, &search.unknowns);
         let next = residual(point);
-        if !(size(&next) < size(&current)) {
+        let (after, before) = (size(&next), size(&current));
+        if after.is_nan() || after >= before {
             break;
         }
         knots.copy_from_slice(&trial);

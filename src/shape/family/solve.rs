@@ -323,7 +323,7 @@ pub(crate) fn full_solution(
     }
     let point = curve.point_with_knots(&knots, t);
     let residual = distance(point, target);
-    if !(residual <= accepted) {
+    if residual.is_nan() || residual > accepted {
         return None;
     }
     let changed_knots: Vec<usize> = (0..old.len()).filter(|&i| knots[i] != old[i]).collect();
