@@ -116,13 +116,8 @@ function listed(state) {
 
 let drawnList = null;
 
-function drawSolutions(state, elements) {
-  const entry = listed(state);
-  const key = entry && [entry.solutions, entry.chosen, entry.live, entry.nearest];
-  if (drawnList && key && key.every((value, i) => value === drawnList[i])) return;
-  if (!drawnList && !key) return;
-  drawnList = key;
-  elements.solutions.replaceChildren();
+/** The list's note: the nearest point followed, the family kept, what the conditions left out. */
+function solutionsNote(state, entry) {
   let note = "";
   if (entry?.nearest) {
     note = `Target outside every region: following the nearest reachable point (distance ${entry.nearest.distance.toPrecision(3)}).`;
@@ -134,11 +129,43 @@ function drawSolutions(state, elements) {
     const dropped = entry.excluded.map((e) => `${e.count} ${e.method.replace("_", " ")} (${e.reason})`).join("; ");
     note = `${note ? `${note} ` : ""}Left out under the conditions: ${dropped}.`;
   }
-  elements.solutionsNote.textContent = note;
+  return note;
+}
+
+/** The text of the list's entry `index`: the solution (the kept one's live values during a
+ * drag), numbered among its pair's solutions when a folded pair has several. */
+function entryText(entry, keys, index) {
+  const { poleOffset = 0, knotOffset = poleOffset } = entry.offsets ?? {};
+  const shown = index === entry.chosen && entry.live ? entry.live : entry.solutions[index];
+  const siblings = keys.filter((key) => key === keys[index]).length;
+  const which = siblings > 1 ? ` · solution ${keys.slice(0, index + 1).filter((key) => key === keys[index]).length} of ${siblings}` : "";
+  return ` ${describeSolution(shown, poleOffset, knotOffset)}${which}`;
+}
+
+/** The solution list. A drag move changes only the kept entry's live values: then only
+ * that entry's text is rewritten (rebuilding some forty entries per move costs the browser
+ * a layout of them all). */
+function drawSolutions(state, elements) {
+  const entry = listed(state);
+  const key = entry && [entry.solutions, entry.chosen, entry.live, entry.nearest];
+  if (drawnList && key && key.every((value, i) => value === drawnList[i])) return;
+  if (!drawnList && !key) return;
+  const note = solutionsNote(state, entry);
   const { poleOffset = 0, knotOffset = poleOffset } = entry?.offsets ?? {};
   // A knot pair whose map folds gives several solutions: numbered "solution 2 of 3".
   const keys = (entry?.solutions ?? []).map((solution) => JSON.stringify(familyOf(solution, poleOffset, knotOffset)));
-  for (const [index, solution] of (entry?.solutions ?? []).entries()) {
+  const sameList = drawnList && key && key[0] === drawnList[0] && key[1] === drawnList[1] && key[3] === drawnList[3];
+  drawnList = key;
+  if (sameList && elements.solutionsNote.textContent === note) {
+    const text = elements.solutions.children[entry.chosen]?.firstChild?.lastChild;
+    if (text) {
+      text.data = entryText(entry, keys, entry.chosen);
+      return;
+    }
+  }
+  elements.solutions.replaceChildren();
+  elements.solutionsNote.textContent = note;
+  for (const index of (entry?.solutions ?? []).keys()) {
     const item = document.createElement("li");
     const label = document.createElement("label");
     const radio = document.createElement("input");
@@ -146,10 +173,7 @@ function drawSolutions(state, elements) {
     radio.name = "solution";
     radio.value = String(index);
     radio.checked = index === entry.chosen;
-    const shown = index === entry.chosen && entry.live ? entry.live : solution;
-    const siblings = keys.filter((key) => key === keys[index]).length;
-    const which = siblings > 1 ? ` · solution ${keys.slice(0, index + 1).filter((key) => key === keys[index]).length} of ${siblings}` : "";
-    label.append(radio, ` ${describeSolution(shown, poleOffset, knotOffset)}${which}`);
+    label.append(radio, document.createTextNode(entryText(entry, keys, index)));
     item.appendChild(label);
     if (index === entry.chosen) item.className = "kept";
     elements.solutions.appendChild(item);
