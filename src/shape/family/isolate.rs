@@ -303,26 +303,33 @@ fn precondition(
 fn clip(system: &Tensor, n: usize, margin: &[f64]) -> Option<[(f64, f64); MAX_VARIABLES]> {
     let mut interval = [(0.0f64, 1.0f64); MAX_VARIABLES];
     let e = system.degrees.map(|d| d + 1);
-    let stride = [1, e[0], e[0] * e[1]];
     for k in 0..n {
         let d = system.degrees[k];
-        if d == 0 {
+        if d == 0 || d >= 64 {
             continue;
         }
+        // The coefficients are blocks `[outer][j][inner]`, `j` the index along `k`.
+        let inner: usize = e[..k].iter().product::<usize>() * n;
+        let outer: usize = e[k + 1..].iter().product();
         for i in 0..n {
-            // Lowest and highest coefficient per index along k.
+            // Lowest and highest coefficient per index along k (plain comparisons: the
+            // coefficients are finite).
             let mut low = [f64::INFINITY; 64];
             let mut high = [f64::NEG_INFINITY; 64];
-            if d >= 64 {
-                continue;
-            }
-            for i2 in 0..e[2] {
-                for i1 in 0..e[1] {
-                    for i0 in 0..e[0] {
-                        let j = [i0, i1, i2][k];
-                        let v = system.coefficients[(i0 + i1 * stride[1] + i2 * stride[2]) * n + i];
-                        low[j] = low[j].min(v);
-                        high[j] = high[j].max(v);
+            for o in 0..outer {
+                for j in 0..=d {
+                    let at = (o * (d + 1) + j) * inner;
+                    for &v in system.coefficients[at..at + inner]
+                        .iter()
+                        .skip(i)
+                        .step_by(n)
+                    {
+                        if v < low[j] {
+                            low[j] = v;
+                        }
+                        if v > high[j] {
+                            high[j] = v;
+                        }
                     }
                 }
             }

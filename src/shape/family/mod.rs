@@ -8,6 +8,7 @@
 #![allow(clippy::needless_range_loop)]
 
 pub(crate) mod domain;
+pub(crate) mod hull;
 pub(crate) mod isolate;
 pub(crate) mod local;
 pub(crate) mod nearest;

@@ -4,6 +4,7 @@
 //! against the admissibility rules and verified by evaluating the new curve with the spline
 //! core.
 
+use super::hull::Triangle;
 use super::local::LocalProblem;
 use super::problems::{
     Family, FamilyChoice, FamilyProblem, direct_problem, envelope_problem, extent, plane_of,
@@ -179,10 +180,21 @@ pub fn solve_families(query: &ShapeQuery, choice: FamilyChoice, target: Point) -
         };
         let accepted = accepted_residual(&group.problem.control_points(), target);
         let weighted = local.poles.iter().any(|h| h[3] != local.poles[0][3]);
+        let triangle = Triangle::of(&local);
+        // Beyond the accepted residual (and rounding) from a set's hull, nothing is accepted.
+        let margin = accepted * (1.0 + 1e-6) + 1e-12 * extent(&group.problem.control_points());
         for unknowns in unknown_sets(&local, size, curve, query.keep_domain) {
             let full: Vec<usize> = unknowns.iter().map(|&m| local.full_index[m]).collect();
             let set = KnotSet::new(&full);
             let mut contains = false;
+            if triangle.excludes(&unknowns, target, &rows, margin) {
+                group.members.push(SetMembership {
+                    knots: set,
+                    omega: None,
+                    contains,
+                });
+                continue;
+            }
             for root in solve_unknowns(&local, &unknowns, target, &rows, weighted, &mut budget) {
                 if let Some(solution) = full_solution(
                     query,
