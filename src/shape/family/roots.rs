@@ -185,7 +185,11 @@ fn one_outermost(
         (2 * q, unknowns[0], (q, 1))
     };
     // Without a margin, so that the span's collapse (below) sits exactly at an end.
-    let search = problem.search_box(&[other], 0.0, 0.0)?;
+    let pair = problem.search_box(unknowns, 0.0, 0.0)?;
+    let position = unknowns.iter().position(|&m| m == other)?;
+    let mut search = problem.search_box(&[other], 0.0, 0.0)?;
+    search.admissible = vec![pair.admissible[position]];
+    search.bounds = vec![pair.admissible[position]];
     let project = |numerator: &Tensor| -> [Tensor; 2] {
         [0, 1].map(|i| {
             let e = rows[i];
@@ -217,12 +221,23 @@ fn one_outermost(
         _ => None,
     };
     let g_reduced: [Tensor; 2] = match collapse {
-        Some(at_start) => [0, 1].map(|i| {
-            g[i].clone()
-                .unscaled()
-                .divided_at_end(q - 1, at_start)
-                .scaled()
-        }),
+        Some(at_start) => {
+            let order = |t: &Tensor| {
+                let c = &t.coefficients;
+                let big = c.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+                let n = c.len();
+                (0..n)
+                    .take_while(|&k| {
+                        let i = if at_start { k } else { n - 1 - k };
+                        c[i].abs() <= 1e-12 * big
+                    })
+                    .count()
+            };
+            let u0 = g[0].clone().unscaled();
+            let u1 = g[1].clone().unscaled();
+            let k = order(&u0).min(order(&u1)).min(q - 1);
+            [u0, u1].map(|u| u.divided_at_end(k, at_start).scaled())
+        }
         None => g.clone(),
     };
     let cross = f0s[0]
@@ -237,8 +252,22 @@ fn one_outermost(
     *budget = budget.saturating_sub(isolation.boxes);
     let (g0, g1) = (g[0].clone().unscaled(), g[1].clone().unscaled());
     let mut found = Vec::new();
+    let slope = cross.derivative(0);
     for root in isolation.roots {
-        let s = root.point;
+        let mut s = root.point;
+        for _ in 0..40 {
+            let (mut f, mut d) = ([0.0], [0.0]);
+            cross.evaluate(s, &mut f);
+            slope.evaluate(s, &mut d);
+            if !(d[0] != 0.0) {
+                break;
+            }
+            let next = (s[0] - f[0] / d[0]).clamp(0.0, 1.0);
+            if (next - s[0]).abs() < 1e-17 {
+                break;
+            }
+            s[0] = next;
+        }
         let (mut v0, mut v1, mut w0, mut w1) = ([0.0], [0.0], [0.0], [0.0]);
         f0[0].evaluate(s, &mut v0);
         f0[1].evaluate(s, &mut v1);

@@ -1,0 +1,193 @@
+//! FAILING CASES (solver defects in src/shape/family, found by
+//! tests/knot_families_properties.rs; each fails on 9631b74 and must pass once the solver is
+//! fixed). One deterministic case per defect: a curve, `t`, a family, the unknown set and the
+//! solution planted there (the target is the new curve's point at `t`, by the tests' own
+//! de Boor); the answer of that family must hold the planted solution (within 1e-7 of each
+//! knot's room, or the conditioning's share of rounding), and every solution it gives must
+//! pass the independent checks of tests/common/families.rs.
+//!
+//! * D1 — a pair with one outermost knot whose other knot is its neighbour (local `(1, 2)` or
+//!   `(2q − 1, 2q)`): `one_outermost` searches the other knot only between the outer knot's
+//!   *old* value and its far neighbour (`search_box(&[other], ..)` holds the outer knot
+//!   fixed), so solutions with the other knot on the far side of that old value are lost.
+//! * D2 — a pair with one outermost knot: the univariate root is taken at the centre of its
+//!   isolating box (`root.point`, never refined on `g`), the outer knot is then extrapolated
+//!   from `α_A` at that point, and Newton's polish from there fails: the solution is dropped.
+//! * D3 — a pair `(t_1, t_{q+1})` (or `(t_q, t_{2q})`) with `t` on a knot, so `t_q = ũ` (or
+//!   `t_{q+1} = ũ`) is fixed: the factor `(b − ũ)^{q−1}` divided out of `G` has a lower order
+//!   there (forced ratios), `divided_at_end(q − 1, ..)` leaves `G` as it is (`k > n`), the
+//!   spurious root at the collapse stays, and its neighbourhood eats the pair's 4096 boxes.
+//! * D4 — two solutions closing in on a fold (2e-4 of the box apart, conditioning 1e-6):
+//!   the subdivision spends its 4096 boxes tiling the first root's neighbourhood (where the
+//!   exclusion margin `1e-12` of the coefficients neither excludes nor certifies) and the 16
+//!   uncertified candidates kept all lie at that root: the second is lost.
+#![allow(clippy::unwrap_used)]
+
+mod common;
+
+use common::families::{
+    Net, Planted, SetBox, check_solution, conditioning, only, planted_found, query, setup,
+};
+use knotshape::shape::Side;
+use knotshape::shape::family::{Family, solve_families};
+use knotshape::spline::{Curve, CurveLimits};
+
+/// The quintic of these cases: 16 points on a sine, clamped knots with a double knot at 0.36.
+fn quintic() -> Curve {
+    let mut knots = vec![0.0; 6];
+    knots.extend([
+        0.08, 0.1733, 0.2667, 0.36, 0.36, 0.4533, 0.5467, 0.64, 0.7333, 0.8267,
+    ]);
+    knots.extend([1.0; 6]);
+    let points: Vec<[f64; 2]> = (0..16)
+        .map(|i| {
+            let x = i as f64;
+            [x, (0.7 * x).sin() * 2.0 + 0.1 * x]
+        })
+        .collect();
+    Curve::new(5, &points, &knots, None, &CurveLimits::default()).unwrap()
+}
+
+/// The study's ex03 cubic (knot-family.md §2.3).
+fn ex03() -> Curve {
+    Curve::new(
+        3,
+        &[[0.43, 1.61], [0.72, 0.67], [-0.12, 1.18], [-0.53, -0.91]],
+        &[-1.75, -1.37, -0.88, 0.0, 0.80, 1.47, 2.00, 2.69],
+        None,
+        &CurveLimits::default(),
+    )
+    .unwrap()
+}
+
+/// Solves for the target of the planted `x` with `family` alone; checks every solution and
+/// that each of `expected` (the planted one first) is among them.
+fn assert_found(
+    curve: &Curve,
+    t: f64,
+    family: Family,
+    side: Option<Side>,
+    keep_domain: bool,
+    unknowns: &[usize],
+    expected: &[Vec<f64>],
+) {
+    let problem = setup(curve, t, family, side, keep_domain).unwrap();
+    let sbox = SetBox::new(&problem, unknowns).unwrap();
+    let knots = problem.knots_with(unknowns, &expected[0]);
+    let target = common::de_boor(curve, &knots, t).unwrap();
+    let outcome = solve_families(&query(curve, t, side, keep_domain), only(family), target);
+    for solution in &outcome.solutions {
+        check_solution(curve, &problem, target, solution).unwrap_or_else(|e| panic!("{e}"));
+    }
+    let answer: Vec<Vec<f64>> =
+        common::families::answers_of(&outcome.solutions, &problem, unknowns)
+            .iter()
+            .map(|s| unknowns.iter().map(|&g| s.knots[g]).collect())
+            .collect();
+    for x in expected {
+        let planted = Planted {
+            unknowns: unknowns.to_vec(),
+            x: x.clone(),
+            target,
+            inside: sbox.inside(x),
+            conditioning: conditioning(&Net::of(curve), &problem, &sbox, x),
+        };
+        assert!(
+            planted.required(),
+            "the case itself: {x:?} inside {:.1e} conditioning {:.1e}",
+            planted.inside,
+            planted.conditioning
+        );
+        assert!(
+            planted_found(curve, &problem, &planted, &outcome.solutions),
+            "{family:?} {side:?} set {unknowns:?} at t = {t}: the solution {x:?} (inside {:.1e} of the box, conditioning {:.1e}) is missing; target {target:?}; the answer for the set: {answer:?}",
+            planted.inside,
+            planted.conditioning
+        );
+    }
+}
+
+/// D1: quintic, t = 0.5 (span 11), envelope right side (u_12 := 0.5), pair (u_8, u_9) =
+/// local (1, 2): planted u_8 = 0.17331867, u_9 = 0.266659335 (u_9 below u_8's old value
+/// 0.2667, which bounds the solver's search for u_9).
+#[test]
+fn d1_one_outermost_neighbour_pair_searches_past_the_outer_knots_old_value() {
+    assert_found(
+        &quintic(),
+        0.5,
+        Family::Envelope,
+        Some(Side::Right),
+        true,
+        &[8, 9],
+        &[vec![0.17331867, 0.266659335]],
+    );
+}
+
+/// D2: quintic, t = 0.4 (span 10), direct family, pair (u_6, u_7) = local (1, 2), planted
+/// u_6 = 0.08001, u_7 = 0.192024 (inside the solver's search for u_7, [0.08, 0.2667]): the
+/// univariate equation's root is isolated near u_7 ≈ 0.192 but its box centre (u_7 ≈ 0.2046)
+/// is used, α_A there gives u_6 ≈ 1.15 and the polish cannot recover.
+#[test]
+fn d2_one_outermost_root_is_refined_before_the_outer_knot_is_computed() {
+    assert_found(
+        &quintic(),
+        0.4,
+        Family::Direct,
+        None,
+        true,
+        &[6, 7],
+        &[vec![0.08001, 0.192024]],
+    );
+}
+
+/// D2 (the other end): quintic, t = 0.45, envelope left side (u_10 := 0.45), pair
+/// (u_9, u_14) = local (q, 2q): planted u_9 = 0.32169, u_14 = 0.75202; the box centre gives
+/// (0.3118, 0.8929), which is dropped.
+#[test]
+fn d2_one_outermost_root_is_refined_at_the_far_end_too() {
+    assert_found(
+        &quintic(),
+        0.45,
+        Family::Envelope,
+        Some(Side::Left),
+        true,
+        &[9, 14],
+        &[vec![0.32169, 0.75202]],
+    );
+}
+
+/// D3: quintic, t = 0.36 on its double knot (u_9 = u_10), envelope left side (u_10 := t, the
+/// envelope's t_q = u_9 = t fixed), pair (u_6, u_11) = local (1, q + 1): planted
+/// u_6 = 0.05199, u_11 = 0.47202.
+#[test]
+fn d3_one_outermost_with_t_on_a_knot_keeps_its_solution() {
+    assert_found(
+        &quintic(),
+        0.36,
+        Family::Envelope,
+        Some(Side::Left),
+        true,
+        &[6, 11],
+        &[vec![0.05199, 0.47202]],
+    );
+}
+
+/// D4: ex03 (domain free), t = 0.431, direct family, the span pair (u_3, u_4): the target
+/// (0.2955581377462337, 0.9306050887207246), planted at u_3 = −0.0934497409159008,
+/// u_4 = 1.3894138647693457 next to a fold, has a second solution 1.5e-4 of the box away,
+/// u_3 = −0.0933502617166108, u_4 = 1.3892216075004733; the answer has only the second.
+#[test]
+fn d4_both_solutions_next_to_a_fold_are_found() {
+    assert_found(
+        &ex03(),
+        0.431,
+        Family::Direct,
+        None,
+        false,
+        &[3, 4],
+        &[
+            vec![-0.0934497409159008, 1.3894138647693457],
+            vec![-0.0933502617166108, 1.3892216075004733],
+        ],
+    );
+}
