@@ -239,3 +239,170 @@ fn one_pair_with_three_solutions_has_all_three() {
         );
     }
 }
+
+/// A 3D cubic: moving three of the direct family's knots puts s(t) off every pair's plane;
+/// the triples find the planted knots again (default families on a 3D curve).
+#[test]
+fn a_planted_triple_is_found_on_a_3d_cubic() {
+    let points: Vec<[f64; 3]> = (0..9)
+        .map(|i| {
+            let a = 0.8 * i as f64;
+            [
+                3.0 * a.cos(),
+                3.0 * a.sin(),
+                0.6 * i as f64 + 0.3 * (1.7 * a).sin(),
+            ]
+        })
+        .collect();
+    let knots = [
+        0.0, 0.0, 0.0, 0.0, 0.15, 0.3, 0.45, 0.6, 0.8, 1.0, 1.0, 1.0, 1.0,
+    ];
+    let cubic = Curve::new(3, &points, &knots, None, &CurveLimits::default()).unwrap();
+    let t = 0.4; // span 5 (u_5 = 0.3 ≤ t < u_6 = 0.45): relevant knots u_3 … u_8
+    let mut planted = knots.to_vec();
+    planted[5] = 0.25;
+    planted[6] = 0.48;
+    planted[7] = 0.62;
+    let target = de_boor(&cubic, &planted, t).unwrap();
+    let query = ShapeQuery::new(&cubic, t);
+    let outcome = solve_families(&query, FamilyChoice::Default, target);
+    let found: Vec<&KnotSolution> = outcome
+        .solutions
+        .iter()
+        .filter(|s| s.family == Family::Triples && s.knots_moved.indices() == [5, 6, 7])
+        .collect();
+    assert!(!found.is_empty(), "{:#?}", outcome.solutions);
+    assert!(
+        found
+            .iter()
+            .any(|s| (5..=7).all(|k| (s.knots[k] - planted[k]).abs() < 1e-9))
+    );
+    for solution in &outcome.solutions {
+        let point = de_boor(&cubic, &solution.knots, t).unwrap();
+        let miss = (0..3)
+            .map(|c| (point[c] - target[c]).powi(2))
+            .sum::<f64>()
+            .sqrt();
+        assert!(miss < 1e-12, "{solution:?}");
+    }
+}
+
+/// Nearest across families on a quintic, for targets no pair reaches: the point returned is
+/// reached (its solution's new curve passes through it, by the test's de Boor), and it is at
+/// least as close as every point of a brute-force lattice over each pair's knots (the test's
+/// own enumeration of the envelope and direct pairs).
+#[test]
+fn the_nearest_point_across_families_beats_a_brute_force_lattice() {
+    use knotshape::shape::family::nearest_across_families;
+    let quintic = curve(
+        5,
+        &[
+            [0.0, 0.0],
+            [1.0, 1.5],
+            [2.0, 2.5],
+            [3.2, 3.0],
+            [4.5, 2.8],
+            [5.5, 1.8],
+            [6.3, 0.6],
+            [7.5, 0.2],
+            [8.8, 0.9],
+            [9.8, 2.2],
+            [11.0, 3.0],
+            [12.2, 2.6],
+            [13.0, 1.2],
+        ],
+        &[
+            0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.12, 0.25, 0.4, 0.5, 0.62, 0.75, 0.88, 1.0, 1.0, 1.0,
+            1.0, 1.0, 1.0,
+        ],
+    );
+    let p = 5;
+    let n = 12;
+    let t = 0.45;
+    let knots = quintic.knots().to_vec();
+    let j = (p..=n).rev().find(|&m| knots[m] <= t).unwrap();
+    // The brute force: each family's pairs over a lattice of their knots.
+    let mut reachable: Vec<[f64; 3]> = Vec::new();
+    let mut lattice = |base: &[f64], relevant: Vec<usize>, span: (usize, usize)| {
+        let movable: Vec<usize> = relevant
+            .into_iter()
+            .filter(|&k| k != p && k != n + 1)
+            .collect();
+        for (x, &a) in movable.iter().enumerate() {
+            for &b in &movable[x + 1..] {
+                let (lo_a, hi_a) = (base[a - 1], base[a + 1]);
+                let (lo_b, hi_b) = (base[b - 1], base[b + 1]);
+                let (lo_a, hi_a) = (lo_a.min(base[a]), if b == a + 1 { hi_b } else { hi_a });
+                let lo_b = if b == a + 1 { lo_a } else { lo_b };
+                for i in 0..=24 {
+                    for k in 0..=24 {
+                        let mut v = base.to_vec();
+                        v[a] = lo_a + (hi_a - lo_a) * i as f64 / 24.0;
+                        v[b] = lo_b + (hi_b - lo_b) * k as f64 / 24.0;
+                        let ordered = v.windows(2).all(|w| w[0] <= w[1]);
+                        let in_span = v[span.0] <= t && t <= v[span.1] && v[span.0] < v[span.1];
+                        if ordered && in_span {
+                            if let Some(q) = de_boor(&quintic, &v, t) {
+                                reachable.push(q);
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    };
+    lattice(&knots, (j - p + 1..=j + p).collect(), (j, j + 1));
+    for i in [j, j + 1] {
+        let mut moved = knots.clone();
+        moved[i] = t;
+        let relevant: Vec<usize> = (i - p + 1..i).chain(i + 1..i + p).collect();
+        lattice(&moved, relevant, (i - 1, i + 1));
+    }
+    let query = ShapeQuery::new(&quintic, t);
+    let picked = quintic.point(t).unwrap();
+    for (dx, dy) in [(3.0, 2.0), (-2.5, 1.5), (0.5, -3.0), (4.0, -1.0)] {
+        let target = [picked[0] + dx, picked[1] + dy, 0.0];
+        let reached = solve_families(&query, FamilyChoice::Default, target);
+        assert!(reached.solutions.is_empty(), "({dx}, {dy}) is reachable");
+        let nearest = nearest_across_families(&query, FamilyChoice::Default, target).unwrap();
+        let first = &nearest.solutions[0];
+        let point = de_boor(&quintic, &first.knots, t).unwrap();
+        assert!(
+            (point[0] - nearest.point[0]).abs() < 1e-12
+                && (point[1] - nearest.point[1]).abs() < 1e-12
+        );
+        let distance =
+            |q: [f64; 3]| ((q[0] - target[0]).powi(2) + (q[1] - target[1]).powi(2)).sqrt();
+        let brute = reachable
+            .iter()
+            .map(|&q| distance(q))
+            .fold(f64::INFINITY, f64::min);
+        assert!(
+            distance(nearest.point) <= brute + 1e-9,
+            "({dx}, {dy}): nearest {} vs lattice {brute}",
+            distance(nearest.point)
+        );
+    }
+}
+
+/// Triples on a 2D curve, when asked: two equations in three knots leave a curve of
+/// solutions, and the answer holds its points where the knots' change is stationary; each is
+/// a solution (the test's de Boor) and moves three of the six knots nearest t.
+#[test]
+fn triples_asked_on_a_2d_curve_give_stationary_solutions() {
+    let cubic = example_cubic();
+    let found = solutions(&cubic, 0.42, [6.0, 1.3], Family::Triples, SideChoice::Both);
+    assert!(!found.is_empty());
+    for solution in &found {
+        assert_eq!(solution.family, Family::Triples);
+        assert_eq!(solution.knots_moved.indices().len(), 3);
+        assert!(
+            solution
+                .knots_moved
+                .indices()
+                .iter()
+                .all(|&k| (4..=9).contains(&k))
+        );
+        assert!(solution.knots.windows(2).all(|w| w[0] <= w[1]));
+    }
+}

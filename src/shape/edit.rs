@@ -411,17 +411,34 @@ pub fn edit(
     Ok(outcome)
 }
 
+/// Deviations within this relative difference of each other are near-ties: among them the
+/// better determined knot solution comes first.
+pub const NEAR_TIE: f64 = 1e-6;
+
 /// Measures every solution's deviation and sorts by it, smallest first (stable, so ties keep
-/// the order of the methods).
+/// the order of the methods); within a run of near-ties ([`NEAR_TIE`]), knot solutions by
+/// their conditioning, best first (the other methods' solutions count as well determined).
 fn measure_and_rank(curve: &crate::spline::Curve, solutions: &mut [EditSolution]) {
     for solution in solutions.iter_mut() {
         let method = solution.detail.method().method();
         solution.max_deviation = Some(method.deviation(curve, solution));
     }
-    solutions.sort_by(|p, q| {
-        let key = |s: &EditSolution| s.max_deviation.unwrap_or(f64::INFINITY);
-        key(p).total_cmp(&key(q))
-    });
+    let key = |s: &EditSolution| s.max_deviation.unwrap_or(f64::INFINITY);
+    solutions.sort_by(|p, q| key(p).total_cmp(&key(q)));
+    let conditioning = |s: &EditSolution| match s.detail {
+        super::SolutionDetail::Knots { conditioning, .. } => conditioning,
+        _ => f64::INFINITY,
+    };
+    let mut start = 0;
+    while start < solutions.len() {
+        let first = key(&solutions[start]);
+        let mut end = start + 1;
+        while end < solutions.len() && key(&solutions[end]) - first <= NEAR_TIE * first.abs() {
+            end += 1;
+        }
+        solutions[start..end].sort_by(|p, q| conditioning(q).total_cmp(&conditioning(p)));
+        start = end;
+    }
 }
 
 /// The nearest reachable point over the requested methods that have one (module docs).

@@ -2,7 +2,7 @@
 //! ([`super::family`]) on curves of degree 2 and more.
 
 use super::family::family_regions;
-use super::family::{KnotSolution, solve_families};
+use super::family::{KnotSolution, nearest_across_families, solve_families};
 use super::method::{
     EditContext, EditMethod, EditSolution, MethodKind, MethodMembership, MethodNearest,
     MethodSolutions, Reachable, SolutionDetail,
@@ -11,7 +11,7 @@ use super::nearest::nearest_reachable;
 use super::regions::PolygonOptions;
 use super::solve::{ShapeError, Solution, affected_domain};
 use crate::spline::Curve;
-use crate::spline::vector::Point;
+use crate::spline::vector::{Point, distance};
 
 /// The knot method.
 #[derive(Debug, Clone, Copy)]
@@ -131,20 +131,42 @@ impl EditMethod for KnotPairs {
         }
     }
 
+    /// The nearest point over every requested family: the cubic's envelope pairs by their
+    /// boundary search ([`nearest_reachable`]), every other family by
+    /// [`nearest_across_families`]; the closer wins.
     fn nearest(&self, edit: &EditContext, target: Point) -> Option<MethodNearest> {
         let curve = edit.query.curve;
-        if curve.degree() != 3 {
-            return None;
-        }
-        let nearest = nearest_reachable(&edit.query, target, false).ok()??;
-        let solutions: Vec<EditSolution> = nearest
-            .solutions
-            .into_iter()
-            .filter_map(|s| envelope_edit_solution(curve, s))
-            .collect();
-        Some(MethodNearest {
+        let query = &edit.query;
+        let envelope = (curve.degree() == 3
+            && query
+                .families
+                .includes(super::family::Family::Envelope, curve))
+        .then(|| nearest_reachable(query, target, false).ok().flatten())
+        .flatten()
+        .map(|nearest| MethodNearest {
             point: nearest.point,
-            solutions,
-        })
+            solutions: nearest
+                .solutions
+                .into_iter()
+                .filter_map(|s| envelope_edit_solution(curve, s))
+                .collect(),
+        });
+        let families =
+            nearest_across_families(query, query.families, target).map(|nearest| MethodNearest {
+                point: nearest.point,
+                solutions: nearest
+                    .solutions
+                    .into_iter()
+                    .filter_map(|s| edit_solution(curve, s))
+                    .collect(),
+            });
+        match (envelope, families) {
+            (Some(a), Some(b)) => Some(if distance(a.point, target) <= distance(b.point, target) {
+                a
+            } else {
+                b
+            }),
+            (a, b) => a.or(b),
+        }
     }
 }

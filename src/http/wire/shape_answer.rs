@@ -87,7 +87,7 @@ pub struct MembershipCandidate {
 
 /// Which regions hold the target.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
-#[schema(example = json!({"reachable": true, "excluded": [], "candidates": [{"side": "left", "applicable": true, "span": 4, "moved_knot": 5,
+#[schema(example = json!({"reachable": true, "excluded": [], "families": [{"family": "envelope", "side": "left", "applicable": true, "span": 4, "moved_knot": 5, "control_points": [[3.0, 4.0], [5.0, 3.5], [6.0, 1.0]], "pairs": [{"region": "omega2", "knots": [4, 6], "contains": true}, {"region": "omega4", "knots": [3, 6], "contains": false}]}], "candidates": [{"side": "left", "applicable": true, "span": 4, "moved_knot": 5,
               "triangle": [[3.0, 4.0], [5.0, 3.5], [6.0, 1.0]], "frame": {"x": 0.18, "y": 0.106667}, "regions": [{"region": "omega2", "knots": [4, 6], "contains": true}, {"region": "omega4", "knots": [3, 6], "contains": false}]}]}))]
 pub struct MembershipResponse {
     /// Whether any requested method reaches the target: a region of a candidate holds it, a
@@ -112,7 +112,7 @@ pub struct MembershipResponse {
 
 /// The reachable point nearest to an unreachable target, and the solutions that reach it.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
-#[schema(example = json!({"point": [5.2, 3.9], "distance": 0.41, "solutions": [{"method": "knots", "region": "omega3", "side": "right", "span": 5, "moved_knot": 6, "changed_knots": [6, 7, 8],
+#[schema(example = json!({"point": [5.2, 3.9], "distance": 0.41, "solutions": [{"method": "knots", "family": "envelope", "region": "omega3", "side": "right", "span": 5, "moved_knot": 6, "solved_knots": [7, 8], "changed_knots": [6, 7, 8], "conditioning": 0.12,
      "knots": [0, 0, 0, 0, 0.2, 0.35, 0.42, 0.61, 0.97, 1, 1, 1], "point": [5.2, 3.9],
      "residual": 0.0, "affected_domain": [0.2, 1], "max_deviation": 0.83}]}))]
 pub struct NearestBody {
@@ -128,8 +128,8 @@ pub struct NearestBody {
 
 /// Every way the requested methods move `s(t)` to the target.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
-#[schema(example = json!({"reachable": true, "candidates": [{"side": "left", "applicable": true, "span": 4, "moved_knot": 5,
-              "triangle": [[3.0, 4.0], [5.0, 3.5], [6.0, 1.0]], "frame": {"x": 0.18, "y": 0.106667}, "regions": [{"region": "omega2", "knots": [4, 6], "contains": true}, {"region": "omega4", "knots": [3, 6], "contains": false}]}], "excluded": [], "solutions": [{"method": "knots", "region": "omega2", "side": "left", "span": 4, "moved_knot": 5, "changed_knots": [4, 5, 6],
+#[schema(example = json!({"reachable": true, "families": [{"family": "envelope", "side": "left", "applicable": true, "span": 4, "moved_knot": 5, "control_points": [[3.0, 4.0], [5.0, 3.5], [6.0, 1.0]], "pairs": [{"region": "omega2", "knots": [4, 6], "contains": true}, {"region": "omega4", "knots": [3, 6], "contains": false}]}], "candidates": [{"side": "left", "applicable": true, "span": 4, "moved_knot": 5,
+              "triangle": [[3.0, 4.0], [5.0, 3.5], [6.0, 1.0]], "frame": {"x": 0.18, "y": 0.106667}, "regions": [{"region": "omega2", "knots": [4, 6], "contains": true}, {"region": "omega4", "knots": [3, 6], "contains": false}]}], "excluded": [], "solutions": [{"method": "knots", "family": "envelope", "region": "omega2", "side": "left", "span": 4, "moved_knot": 5, "solved_knots": [4, 6], "changed_knots": [4, 5, 6], "conditioning": 0.21,
      "knots": [0, 0, 0, 0, 0.3, 0.42, 0.6, 0.75, 1, 1, 1, 1], "point": [4.746667, 3.323333],
      "residual": 3.2e-15, "affected_domain": [0, 1], "max_deviation": 1.030559}]}))]
 pub struct SolveResponse {
@@ -194,7 +194,14 @@ pub struct RegionsCandidate {
               "triangle": [[3.0, 4.0], [5.0, 3.5], [6.0, 1.0]], "regions": [{"region": "omega2", "knots": [4, 6],
      "polygon": [[5.56, 2.1], [4.9264, 2.8128], [4.12, 3.72], [5.0, 3.5], [5.56, 2.1]],
      "polygon_frame": [[0.0, 0.56], [0.1936, 0.3136], [0.44, 0.0], [0.0, 0.0], [0.0, 0.56]],
-     "tolerance_met": true}]}], "weight_regions": []}))]
+     "tolerance_met": true}]}],
+     "families": [{"family": "envelope", "side": "left", "applicable": true, "span": 4, "moved_knot": 5,
+       "control_points": [[3.0, 4.0], [5.0, 3.5], [6.0, 1.0]], "regions": [{"region": "omega2", "knots": [4, 6],
+       "polygon": [[5.56, 2.1], [4.9264, 2.8128], [4.12, 3.72], [5.0, 3.5], [5.56, 2.1]],
+       "polygons": [[[5.56, 2.1], [4.9264, 2.8128], [4.12, 3.72], [5.0, 3.5], [5.56, 2.1]]],
+       "folded": false, "tolerance_met": true,
+       "polygon_frame": [[0.0, 0.56], [0.1936, 0.3136], [0.44, 0.0], [0.0, 0.0], [0.0, 0.56]]}]}],
+     "weight_regions": []}))]
 pub struct RegionsResponse {
     /// A cubic's envelope candidates, one per requested side, when `methods` holds `knots`
     /// (else empty).

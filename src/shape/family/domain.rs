@@ -1,4 +1,4 @@
-//! A pair's admissible knots as the image of the unit square (docs/method.md §32.1), so that
+//! A pair's admissible knots as the image of the unit square (docs/method.md §32), so that
 //! regions and nearest points can walk it: a rectangle for two knots with a fixed knot
 //! between them, a sheared triangle for two neighbours on one side of `t`, and, for the two
 //! ends of `t`'s span, coordinates around their collapse `t_q = t_{q+1} = ũ` (where the point

@@ -1,6 +1,6 @@
 //! Certified root isolation for a square polynomial system `F: [0, 1]^N → R^N`, `N ≤ 3`, given
 //! in tensor Bernstein form ([`super::tensor`]): subdivision with two tests per box
-//! (docs/method.md §31.3).
+//! (docs/method.md §31.4).
 //!
 //! * **Exclusion**: a component whose Bernstein coefficients on the box all have one sign
 //!   (beyond a rounding margin) has no zero there (convex hull property).
@@ -24,6 +24,10 @@ pub const ZERO_MARGIN: f64 = 1e-12;
 /// that roots at simple values (a planted solution, a symmetric system) do not fall on a cut,
 /// where no box could certify them.
 const CUT: f64 = 0.4921875;
+
+/// Krawczyk's test is tried on boxes at most this wide (unit-box coordinates) in every
+/// variable: on larger ones the interval Jacobian is too loose for it to succeed.
+const KRAWCZYK_WIDTH: f64 = 0.25;
 
 #[cfg(test)]
 /// Newton steps at most in [`refine`].
@@ -124,7 +128,8 @@ pub fn isolate(
         }
         let jacobian = jacobian_ranges(&cell.system, n, &margin);
         let y = invert(&middle(&jacobian, n), n);
-        match y.map_or(Test::Undecided, |y| {
+        let small = (0..n).all(|k| cell.width[k] <= KRAWCZYK_WIDTH);
+        match y.filter(|_| small).map_or(Test::Undecided, |y| {
             krawczyk(&cell.system, n, &margin, &jacobian, y)
         }) {
             Test::NoRoot => continue,
@@ -355,9 +360,9 @@ fn clip(system: &Tensor, n: usize, margin: &[f64]) -> Option<[(f64, f64); MAX_VA
 }
 
 /// The cell cut down to `interval` (local coordinates per variable), when that removes at
-/// least a quarter of some side; `None` otherwise (the cell is tested and halved instead).
+/// least two fifths of some side; `None` otherwise (the cell is tested and halved instead).
 fn reduce(cell: &Cell, n: usize, interval: &[(f64, f64); MAX_VARIABLES]) -> Option<Cell> {
-    let worth = (0..n).any(|k| interval[k].1 - interval[k].0 <= 0.75);
+    let worth = (0..n).any(|k| interval[k].1 - interval[k].0 <= 0.6);
     if !worth {
         return None;
     }
@@ -366,7 +371,7 @@ fn reduce(cell: &Cell, n: usize, interval: &[(f64, f64); MAX_VARIABLES]) -> Opti
     let mut width = cell.width;
     for k in 0..n {
         let (a, b) = interval[k];
-        if b - a > 0.75 || cell.system.degrees[k] == 0 {
+        if b - a > 0.6 || cell.system.degrees[k] == 0 {
             continue;
         }
         // Widen a little: the cut's rounding must not lose a root on its edge.
@@ -464,7 +469,8 @@ pub fn refine(system: &Tensor, n: usize, start: [f64; MAX_VARIABLES]) -> [f64; M
         }
         let mut next_value = [0.0; MAX_VARIABLES];
         system.evaluate(next, &mut next_value);
-        if !(size(&next_value) < size(&value)) {
+        let (after, before) = (size(&next_value), size(&value));
+        if after.is_nan() || after >= before {
             break;
         }
         x = next;

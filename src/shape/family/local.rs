@@ -30,8 +30,20 @@ use crate::spline::vector::Point;
 /// norms stay below 100 up to here); above it, Bernstein arithmetic.
 pub const INTERPOLATION_DEGREE: usize = 9;
 
-/// `n + 1` Chebyshev–Lobatto nodes on `[0, 1]` (one node, `1/2`, for `n = 0`).
-fn lobatto_nodes(n: usize) -> Vec<f64> {
+/// `n + 1` Chebyshev–Lobatto nodes on `[0, 1]` (one node, `1/2`, for `n = 0`), computed
+/// once per degree.
+fn lobatto_nodes(n: usize) -> &'static [f64] {
+    static TABLE: std::sync::OnceLock<Vec<Vec<f64>>> = std::sync::OnceLock::new();
+    let table = TABLE.get_or_init(|| {
+        (0..=INTERPOLATION_DEGREE)
+            .map(compute_lobatto_nodes)
+            .collect()
+    });
+    &table[n]
+}
+
+/// [`lobatto_nodes`] computed.
+fn compute_lobatto_nodes(n: usize) -> Vec<f64> {
     if n == 0 {
         return vec![0.5];
     }
@@ -51,7 +63,7 @@ fn collocation_inverse(n: usize) -> &'static [f64] {
 /// Gauss–Jordan inverse of the collocation matrix of degree `n`.
 fn invert_collocation(n: usize) -> Vec<f64> {
     let size = n + 1;
-    let nodes = lobatto_nodes(n);
+    let nodes = compute_lobatto_nodes(n);
     let mut a = vec![0.0; size * size];
     for (i, &s) in nodes.iter().enumerate() {
         for j in 0..size {
@@ -92,6 +104,10 @@ fn invert_collocation(n: usize) -> Vec<f64> {
     }
     inverse
 }
+
+/// One ratio of de Boor's triangle as polynomials: its left factor `t_hi - ũ`, right factor
+/// `ũ - t_lo` and denominator (`None` when it is 1).
+type RatioFactors = (Tensor, Tensor, Option<Tensor>);
 
 /// The primitive `Π_q(ũ)` of one family at one picked parameter.
 #[derive(Debug, Clone, PartialEq)]
@@ -310,7 +326,7 @@ impl LocalProblem {
             } else {
                 lo = lo.max(u);
             }
-            if !(hi >= lo) {
+            if hi < lo {
                 return None;
             }
             admissible.push((lo, hi));
@@ -520,7 +536,7 @@ impl LocalProblem {
         if degrees.iter().any(|&d| d > INTERPOLATION_DEGREE) {
             return None;
         }
-        let nodes: [Vec<f64>; MAX_VARIABLES] = degrees.map(lobatto_nodes);
+        let nodes: [&[f64]; MAX_VARIABLES] = degrees.map(lobatto_nodes);
         let e = degrees.map(|d| d + 1);
         let mut values = vec![0.0; e[0] * e[1] * e[2] * 4];
         let blown_ratio = ratios.iter().find(|r| r.2).map(|r| r.0);
@@ -605,8 +621,7 @@ impl LocalProblem {
             .map(|(a, b)| (search.unknowns[a], search.unknowns[b]));
         // Per ratio: (left factor, right factor, denominator) — `None` denominators are 1.
         // Index [l][r].
-        let mut factors: Vec<Vec<Option<(Tensor, Tensor, Option<Tensor>)>>> =
-            vec![vec![None; q + 1]; q + 1];
+        let mut factors: Vec<Vec<Option<RatioFactors>>> = vec![vec![None; q + 1]; q + 1];
         let lambda_tensor = |search: &SearchBox, (_, b): (usize, usize)| {
             let (lo, hi) = search.bounds[b];
             let mut mask = [false; MAX_VARIABLES];

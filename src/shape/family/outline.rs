@@ -58,11 +58,12 @@ const EDGE_PIECES: usize = 8;
 /// Bisection depth limit.
 const MAX_DEPTH: u32 = 24;
 
-/// Initial cells per side of the mesh (folded path).
-const MESH_START: usize = 8;
+/// Cells per side of the mesh of a folding map.
+const MESH_CELLS: usize = 8;
 
-/// Leaf cells at most in the mesh (folded path).
-const MESH_BUDGET: usize = 4096;
+/// Lattice squares per cell side (where the Jacobian is sampled; a fold cell is drawn as
+/// these squares).
+const LATTICE: usize = 4;
 
 /// The outline of pair `unknowns` (local indices) of `problem` in `plane`, within
 /// `tolerance` (curve units), with at most `max_vertices` boundary vertices on the
@@ -78,7 +79,7 @@ pub fn pair_outline(
     let map = |uv: (f64, f64)| plane.coordinates(point_at(problem, unknowns, &domain, uv));
     let folded = !fold_free(problem, unknowns, plane);
     let (contours, tolerance_met) = if folded {
-        mesh_triangles(&map, tolerance)
+        mesh_polygons(&map, tolerance, max_vertices)
     } else {
         boundary(&map, tolerance, max_vertices)
     };
@@ -222,66 +223,103 @@ fn refine(
     );
 }
 
-/// The images of a mesh of the unit square, refined where a cell's image is not flat
-/// within the tolerance, as counter-clockwise triangles.
-fn mesh_triangles(
+/// The region of a folding map as polygons whose union it is: the unit square is cut into
+/// [`MESH_CELLS`]² cells and the map's Jacobian determinant sampled on a lattice
+/// ([`LATTICE`] points per cell side, central differences). A cell where it keeps one strict
+/// sign maps one-to-one: its image is bounded by the image of its boundary, sampled to the
+/// tolerance (each edge the same way from both of its cells, so that neighbours meet). A cell
+/// where it changes sign holds a fold: its lattice squares are taken as straight
+/// quadrilaterals. Every polygon is oriented counter-clockwise for the union.
+fn mesh_polygons(
     map: &impl Fn((f64, f64)) -> [f64; 2],
     tolerance: f64,
+    max_vertices: usize,
 ) -> (Vec<Vec<[f64; 2]>>, bool) {
-    let mut cells: Vec<(f64, f64, f64)> = Vec::new(); // (u0, v0, size)
-    let step = 1.0 / MESH_START as f64;
-    for i in 0..MESH_START {
-        for j in 0..MESH_START {
-            cells.push((i as f64 * step, j as f64 * step, step));
-        }
-    }
-    let mut triangles = Vec::new();
+    let points = MESH_CELLS * LATTICE + 1;
+    let step = 1.0 / (points - 1) as f64;
+    let lattice: Vec<[f64; 2]> = (0..points * points)
+        .map(|k| map(((k % points) as f64 * step, (k / points) as f64 * step)))
+        .collect();
+    let at = |i: usize, j: usize| lattice[j * points + i];
+    // det J at each lattice point by central (one-sided at the border) differences.
+    let determinant = |i: usize, j: usize| {
+        let (i0, i1) = (i.saturating_sub(1), (i + 1).min(points - 1));
+        let (j0, j1) = (j.saturating_sub(1), (j + 1).min(points - 1));
+        let du = [at(i1, j)[0] - at(i0, j)[0], at(i1, j)[1] - at(i0, j)[1]];
+        let dv = [at(i, j1)[0] - at(i, j0)[0], at(i, j1)[1] - at(i, j0)[1]];
+        (du[0] * dv[1] - du[1] * dv[0]) / ((i1 - i0) * (j1 - j0)) as f64
+    };
+    let mut polygons = Vec::new();
     let mut met = true;
-    while let Some((u0, v0, h)) = cells.pop() {
-        let corner = [
-            map((u0, v0)),
-            map((u0 + h, v0)),
-            map((u0 + h, v0 + h)),
-            map((u0, v0 + h)),
-        ];
-        let centre = map((u0 + 0.5 * h, v0 + 0.5 * h));
-        let bilinear = [0, 1].map(|c| 0.25 * corner.iter().map(|p| p[c]).sum::<f64>());
-        let mut flat = (centre[0] - bilinear[0]).hypot(centre[1] - bilinear[1]) <= tolerance;
-        for k in 0..4 {
-            if !flat {
-                break;
-            }
-            let (a, b) = (corner[k], corner[(k + 1) % 4]);
-            let (du, dv) = [(0.5, 0.0), (1.0, 0.5), (0.5, 1.0), (0.0, 0.5)][k];
-            let middle = map((u0 + du * h, v0 + dv * h));
-            flat = to_segment(middle, a, b) <= tolerance;
-        }
-        if !flat && triangles.len() / 2 + cells.len() + 4 <= MESH_BUDGET && h > 1e-6 {
-            let g = 0.5 * h;
-            cells.extend([
-                (u0, v0, g),
-                (u0 + g, v0, g),
-                (u0, v0 + g, g),
-                (u0 + g, v0 + g, g),
-            ]);
-            continue;
-        }
-        if !flat {
-            met = false;
-        }
-        for triangle in [
-            [corner[0], corner[1], corner[2]],
-            [corner[0], corner[2], corner[3]],
-        ] {
-            let signed = area(&triangle);
-            if signed > 0.0 {
-                triangles.push(triangle.to_vec());
-            } else if signed < 0.0 {
-                triangles.push(vec![triangle[0], triangle[2], triangle[1]]);
+    let mut budget = max_vertices.saturating_mul(4);
+    for cj in 0..MESH_CELLS {
+        for ci in 0..MESH_CELLS {
+            let (i0, j0) = (ci * LATTICE, cj * LATTICE);
+            let signs: Vec<f64> = (0..=LATTICE)
+                .flat_map(|dj| (0..=LATTICE).map(move |di| (i0 + di, j0 + dj)))
+                .map(|(i, j)| determinant(i, j))
+                .collect();
+            let positive = signs.iter().all(|&d| d > 0.0);
+            let negative = signs.iter().all(|&d| d < 0.0);
+            if positive || negative {
+                let mut ring = Vec::new();
+                let corners = [
+                    (i0, j0),
+                    (i0 + LATTICE, j0),
+                    (i0 + LATTICE, j0 + LATTICE),
+                    (i0, j0 + LATTICE),
+                ];
+                for k in 0..4 {
+                    let (a, b) = (corners[k], corners[(k + 1) % 4]);
+                    for piece in 0..LATTICE {
+                        let point = |t: usize| {
+                            (
+                                (a.0 * (LATTICE - t) + b.0 * t) as f64 / LATTICE as f64 * step,
+                                (a.1 * (LATTICE - t) + b.1 * t) as f64 / LATTICE as f64 * step,
+                            )
+                        };
+                        let (s0, s1) = (point(piece), point(piece + 1));
+                        let along = |s: f64| (s0.0 + s * (s1.0 - s0.0), s0.1 + s * (s1.1 - s0.1));
+                        let start = map(s0);
+                        ring.push(start);
+                        refine(
+                            map,
+                            &along,
+                            (0.0, start),
+                            (1.0, map(s1)),
+                            tolerance,
+                            0,
+                            &mut budget,
+                            &mut met,
+                            &mut ring,
+                        );
+                    }
+                }
+                if area(&ring) < 0.0 {
+                    ring.reverse();
+                }
+                polygons.push(ring);
+            } else {
+                for dj in 0..LATTICE {
+                    for di in 0..LATTICE {
+                        let (i, j) = (i0 + di, j0 + dj);
+                        let mut quad = vec![at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)];
+                        let middle = map(((i as f64 + 0.5) * step, (j as f64 + 0.5) * step));
+                        let bilinear =
+                            [0, 1].map(|c| 0.25 * quad.iter().map(|p| p[c]).sum::<f64>());
+                        if (middle[0] - bilinear[0]).hypot(middle[1] - bilinear[1]) > tolerance {
+                            met = false;
+                        }
+                        if area(&quad) < 0.0 {
+                            quad.reverse();
+                        }
+                        polygons.push(quad);
+                    }
+                }
             }
         }
     }
-    (triangles, met)
+    (polygons, met)
 }
 
 /// Whether the map of pair `unknowns` provably does not fold on its search box: the

@@ -1,5 +1,5 @@
 //! The knot families and the local problem each poses at a picked parameter (docs/method.md
-//! §31.1–§31.2): which knots are relevant, which control points act, and which sets of
+//! §30): which knots are relevant, which control points act, and which sets of
 //! unknowns (pairs, triples) may move.
 
 use super::local::LocalProblem;
@@ -262,7 +262,7 @@ pub fn plane_of(points: &[Point]) -> Option<[Point; 3]> {
         }
     }
     let (area, normal, edge) = best;
-    if !(area > COLLINEAR_TOLERANCE * size * size) {
+    if area.is_nan() || area <= COLLINEAR_TOLERANCE * size * size {
         return None;
     }
     let unit = |v: Point| {

@@ -1,4 +1,4 @@
-//! Every admissible solution of one set of unknown knots (docs/method.md §31.3): closed forms
+//! Every admissible solution of one set of unknown knots (docs/method.md §31.4): closed forms
 //! where they exist (`q = 2`: the paper's six; the outermost pair of any degree: a 2 × 2
 //! linear system), certified subdivision ([`super::isolate`]) for the rest, each root then
 //! polished by Newton's method on de Boor itself and checked against the admissible box.
@@ -109,6 +109,9 @@ pub fn solve_unknowns(
                 .collect(),
             None => subdivision(problem, &search, target, rows, budget),
         },
+        Solver::Subdivision if unknowns.len() == 3 && rows.len() == 2 => {
+            stationary_triples(problem, &search, target, rows, budget)
+        }
         Solver::Subdivision => subdivision(problem, &search, target, rows, budget),
     };
     let mut roots: Vec<LocalRoot> = Vec::new();
@@ -162,7 +165,157 @@ fn subdivision(
         .collect()
 }
 
-/// A pair with one outermost knot (docs/method.md §31.3): that knot enters one ratio only,
+/// Three knots for a 2D target (docs/method.md §31.4): two equations leave a curve of
+/// solutions; returned are its points where the change of the knots is stationary,
+/// measured in the solver's unit box (`|s - s⁰|²`, `s⁰` the current knots): `F = 0` and
+/// `det(s - s⁰, ∇F₁, ∇F₂) = 0` (the change is normal to the curve of solutions), a square
+/// polynomial system solved by the same certified subdivision.
+fn stationary_triples(
+    problem: &LocalProblem,
+    search: &SearchBox,
+    target: Point,
+    rows: &[Point],
+    budget: &mut usize,
+) -> Vec<(Vec<f64>, bool)> {
+    let system = problem.system(search, target, rows);
+    let current = unit_coordinates(problem, search);
+    let scalar = |t: &Tensor, i: usize| {
+        t.combine(&[
+            if i == 0 { 1.0 } else { 0.0 },
+            if i == 1 { 1.0 } else { 0.0 },
+        ])
+    };
+    let gradients: Vec<[Tensor; 2]> = (0..3)
+        .map(|k| {
+            let d = system.derivative(k);
+            [scalar(&d, 0).scaled(), scalar(&d, 1).scaled()]
+        })
+        .collect();
+    let minus = Tensor::constant(&[-1.0]);
+    let cofactor = |i: usize, j: usize| {
+        gradients[i][0]
+            .times(&gradients[j][1])
+            .plus(&gradients[j][0].times(&gradients[i][1]).times(&minus))
+    };
+    let displacement = |k: usize| {
+        let mut mask = [false; MAX_VARIABLES];
+        mask[k] = true;
+        let start = current[k];
+        Tensor::multi_affine(mask, move |s| s[k] - start)
+    };
+    let stationary = displacement(0)
+        .times(&cofactor(1, 2))
+        .plus(&displacement(1).times(&cofactor(2, 0)))
+        .plus(&displacement(2).times(&cofactor(0, 1)));
+    let degrees = [0, 1, 2].map(|k| stationary.degrees[k].max(system.degrees[k]));
+    let parts = [
+        scalar(&system, 0).scaled().raised_to(degrees).unscaled(),
+        scalar(&system, 1).scaled().raised_to(degrees).unscaled(),
+        stationary.raised_to(degrees).unscaled(),
+    ];
+    let combined = Tensor::stack(&parts);
+    let options = IsolationOptions {
+        max_boxes: TRIPLE_BOXES.min(*budget),
+        ..IsolationOptions::default()
+    };
+    let outside = |lo: [f64; MAX_VARIABLES], width: [f64; MAX_VARIABLES]| {
+        disordered(problem, search, lo, width)
+    };
+    let isolation = isolate(&combined, 3, options, &outside);
+    *budget = budget.saturating_sub(isolation.boxes);
+    isolation
+        .roots
+        .into_iter()
+        .map(|root| {
+            let mut knots = problem.knots_at(search, root.point);
+            polish_underdetermined(problem, search, &mut knots, target, rows);
+            (knots, root.certified)
+        })
+        .collect()
+}
+
+/// The current knots of `search`'s unknowns in its unit box.
+fn unit_coordinates(problem: &LocalProblem, search: &SearchBox) -> [f64; MAX_VARIABLES] {
+    let mut s = [0.0; MAX_VARIABLES];
+    let unit = |k: usize, value: f64| {
+        let (lo, hi) = search.bounds[k];
+        if hi > lo {
+            (value - lo) / (hi - lo)
+        } else {
+            0.0
+        }
+    };
+    for (k, &m) in search.unknowns.iter().enumerate() {
+        s[k] = unit(k, problem.knots[m]);
+    }
+    if let Some((a, b)) = search.blow_up {
+        let (ta, tb) = (
+            problem.knots[search.unknowns[a]],
+            problem.knots[search.unknowns[b]],
+        );
+        let sigma = tb - ta;
+        s[a] = unit(a, sigma);
+        s[b] = unit(
+            b,
+            if sigma > 0.0 {
+                (problem.parameter - ta) / sigma
+            } else {
+                0.5
+            },
+        );
+    }
+    s
+}
+
+/// Newton's method with the least-norm step (`Δ = -Jᵀ (J Jᵀ)⁻¹ r`) for two equations in three
+/// knots: it lands on the curve of solutions next to the start.
+fn polish_underdetermined(
+    problem: &LocalProblem,
+    search: &SearchBox,
+    knots: &mut [f64],
+    target: Point,
+    rows: &[Point],
+) {
+    let unknowns = &search.unknowns;
+    for _ in 0..POLISH_STEPS {
+        let (point, partials) = problem.point_and_partials(knots, unknowns);
+        let d = sub(point, target);
+        let r = [dot(rows[0], d), dot(rows[1], d)];
+        if r[0] == 0.0 && r[1] == 0.0 {
+            break;
+        }
+        let j: Vec<[f64; 3]> = (0..2)
+            .map(|i| [0, 1, 2].map(|k| dot(rows[i], partials[k])))
+            .collect();
+        let mut gram = [[0.0; MAX_VARIABLES]; MAX_VARIABLES];
+        for i in 0..2 {
+            for l in 0..2 {
+                gram[i][l] = (0..3).map(|k| j[i][k] * j[l][k]).sum();
+            }
+        }
+        let Some(inverse) = invert(&gram, 2) else {
+            break;
+        };
+        let y = [0, 1].map(|i| inverse[i][0] * r[0] + inverse[i][1] * r[1]);
+        let mut trial = knots.to_vec();
+        for (k, &m) in unknowns.iter().enumerate() {
+            let (lo, hi) = search.admissible[k];
+            let widen = SEARCH_MARGIN * (hi - lo);
+            trial[m] = (knots[m] - (j[0][k] * y[0] + j[1][k] * y[1]))
+                .max(lo - widen)
+                .min(hi + widen);
+        }
+        let next = sub(problem.point(&trial), target);
+        let next_r = [dot(rows[0], next), dot(rows[1], next)];
+        let (after, before) = (next_r[0].hypot(next_r[1]), r[0].hypot(r[1]));
+        if after.is_nan() || after >= before {
+            break;
+        }
+        knots.copy_from_slice(&trial);
+    }
+}
+
+/// A pair with one outermost knot (docs/method.md §31.4): that knot enters one ratio only,
 /// `α_A = α_{1,1}` for `t_1` (`α_{q,1}` for `t_{2q}`), and the homogeneous point is affine in
 /// it, `H = H_0(b) + α_A (H_1(b) - H_0(b))` with `b` the other knot. The equations
 /// `F_0(b) + α_A G(b) = 0` (`G = F_1 - F_0`, both projected) hold exactly when
@@ -274,7 +427,7 @@ fn one_outermost(
         g0.evaluate(s, &mut w0);
         g1.evaluate(s, &mut w1);
         let norm = w0[0] * w0[0] + w1[0] * w1[0];
-        if !(norm > 0.0) {
+        if norm.is_nan() || norm <= 0.0 {
             continue;
         }
         let alpha = -(v0[0] * w0[0] + v1[0] * w1[0]) / norm;
@@ -303,7 +456,7 @@ fn disordered(
     let unknowns = &search.unknowns;
     let n = unknowns.len();
     let pairs: Vec<(usize, usize)> = (1..n)
-        .filter(|&k| unknowns[k] == unknowns[k - 1] + 1 && !(search.blow_up == Some((k - 1, k))))
+        .filter(|&k| unknowns[k] == unknowns[k - 1] + 1 && search.blow_up != Some((k - 1, k)))
         .map(|k| (unknowns[k - 1], unknowns[k]))
         .collect();
     if pairs.is_empty() {
@@ -370,7 +523,7 @@ fn quadratic(
         .collect()
 }
 
-/// The outermost pair `(t_1, t_{2q})` (docs/method.md §31.3): each enters one ratio only,
+/// The outermost pair `(t_1, t_{2q})` (docs/method.md §31.4): each enters one ratio only,
 /// `α_A = α_{1,1}` and `α_B = α_{q,1}`, and the homogeneous point is affine in the two
 /// together, `H = H_00 + α_A (H_10 - H_00) + α_B (H_01 - H_00)`, so `rows · (X - p W) = 0` is a
 /// 2 × 2 linear system; then `t_1 = (ũ - α_A t_{q+1}) / (1 - α_A)` and
@@ -457,7 +610,8 @@ fn polish(
         }
         let (point, trial_partials) = problem.point_and_partials(&trial, &search.unknowns);
         let next = residual(point);
-        if !(size(&next) < size(&current)) {
+        let (after, before) = (size(&next), size(&current));
+        if after.is_nan() || after >= before {
             break;
         }
         knots.copy_from_slice(&trial);

@@ -132,11 +132,12 @@ pub fn family_problems(query: &ShapeQuery, choice: FamilyChoice) -> Vec<FamilyPr
 
 /// The directions the equations of a set of `size` unknowns are taken along: the plane's
 /// axes for pairs on 3D curves (the target must lie on the pair's surface of reach), the
-/// coordinate axes otherwise.
+/// coordinate axes otherwise (on a 2D curve triples meet two equations: their solutions
+/// where the knots' change is stationary are taken, docs/method.md §31.4).
 fn rows_for(curve: &Curve, problem: &FamilyProblem, size: usize) -> Option<Vec<Point>> {
     let axes = vec![[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
     match (curve.dimension().count(), size) {
-        (2, 2) => Some(axes[..2].to_vec()),
+        (2, _) => Some(axes[..2].to_vec()),
         (3, 3) => Some(axes),
         (3, 2) => plane_of(&problem.control_points()).map(|[e1, e2, _]| vec![e1, e2]),
         _ => None,
@@ -172,10 +173,7 @@ pub fn solve_families(query: &ShapeQuery, choice: FamilyChoice, target: Point) -
             2
         };
         let Some(rows) = rows_for(curve, &group.problem, size) else {
-            group.reason = Some(
-                "three knots meet three equations: on a 2D curve their solutions form curves, not points"
-                    .to_string(),
-            );
+            group.reason = Some("the control points acting are collinear".to_string());
             outcome.groups.push(group);
             continue;
         };
@@ -301,7 +299,7 @@ fn accepted_residual(control_points: &[Point], target: Point) -> f64 {
 /// the new knot vector is not monotone or not finite, its domain is empty or (under
 /// `keep_domain`) moved, a knot value's multiplicity grows past `p`, or the new curve,
 /// evaluated by the spline core at `t`, misses the target by more than `accepted`.
-fn full_solution(
+pub(crate) fn full_solution(
     query: &ShapeQuery,
     problem: &FamilyProblem,
     local: &LocalProblem,
@@ -325,7 +323,7 @@ fn full_solution(
     }
     let point = curve.point_with_knots(&knots, t);
     let residual = distance(point, target);
-    if !(residual <= accepted) {
+    if residual.is_nan() || residual > accepted {
         return None;
     }
     let changed_knots: Vec<usize> = (0..old.len()).filter(|&i| knots[i] != old[i]).collect();
