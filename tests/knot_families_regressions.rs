@@ -1,26 +1,30 @@
-//! FAILING CASES (solver defects in src/shape/family, found by
-//! tests/knot_families_properties.rs; each fails on 9631b74 and must pass once the solver is
-//! fixed). One deterministic case per defect: a curve, `t`, a family, the unknown set and the
-//! solution planted there (the target is the new curve's point at `t`, by the tests' own
-//! de Boor); the answer of that family must hold the planted solution (within 1e-7 of each
-//! knot's room, or the conditioning's share of rounding), and every solution it gives must
-//! pass the independent checks of tests/common/families.rs.
+//! Regression cases of four solver defects in src/shape/family, each found by
+//! tests/knot_families_properties.rs and fixed since. One deterministic case per defect: a
+//! curve, `t`, a family, the unknown set and the solution planted there (the target is the
+//! new curve's point at `t`, by the tests' own de Boor); the answer of that family must hold
+//! the planted solution (within 1e-7 of each knot's room, or the conditioning's share of
+//! rounding), and every solution it gives must pass the independent checks of
+//! tests/common/families.rs.
 //!
 //! * D1 — a pair with one outermost knot whose other knot is its neighbour (local `(1, 2)` or
-//!   `(2q − 1, 2q)`): `one_outermost` searches the other knot only between the outer knot's
-//!   *old* value and its far neighbour (`search_box(&[other], ..)` holds the outer knot
-//!   fixed), so solutions with the other knot on the far side of that old value are lost.
-//! * D2 — a pair with one outermost knot: the univariate root is taken at the centre of its
-//!   isolating box (`root.point`, never refined on `g`), the outer knot is then extrapolated
-//!   from `α_A` at that point, and Newton's polish from there fails: the solution is dropped.
+//!   `(2q − 1, 2q)`): the other knot was searched only between the outer knot's *old* value
+//!   and its far neighbour, so solutions with the other knot past that old value were lost.
+//!   It now ranges over its interval in the pair's admissible box.
+//! * D2 — a pair with one outermost knot: the univariate root was taken at the centre of its
+//!   isolating box, the outer knot extrapolated from `α_A` there, and Newton's polish on
+//!   de Boor could not recover from that start: the solution was dropped. The root is now
+//!   refined by Newton's method on the univariate polynomial first.
 //! * D3 — a pair `(t_1, t_{q+1})` (or `(t_q, t_{2q})`) with `t` on a knot, so `t_q = ũ` (or
-//!   `t_{q+1} = ũ`) is fixed: the factor `(b − ũ)^{q−1}` divided out of `G` has a lower order
-//!   there (forced ratios), `divided_at_end(q − 1, ..)` leaves `G` as it is (`k > n`), the
-//!   spurious root at the collapse stays, and its neighbourhood eats the pair's 4096 boxes.
-//! * D4 — two solutions closing in on a fold (2e-4 of the box apart, conditioning 1e-6):
-//!   the subdivision spends its 4096 boxes tiling the first root's neighbourhood (where the
-//!   exclusion margin `1e-12` of the coefficients neither excludes nor certifies) and the 16
-//!   uncertified candidates kept all lie at that root: the second is lost.
+//!   `t_{q+1} = ũ`) is fixed: the factor divided out of `G` at the span's collapse has a lower
+//!   order than `q − 1` there (forced ratios), it was not divided out at all, and the spurious
+//!   root at the collapse took the pair's 4096 boxes. The order is now read off the
+//!   coefficients.
+//! * D4 — two solutions closing in on a fold (1.5e-4 of the box apart, conditioning 1.2e-6):
+//!   the subdivision spent its 4096 boxes tiling a sliver around the first root (where the
+//!   equations stay within the rounding margin of zero, so no test decides), and the 16
+//!   uncertified candidates kept all lay at that root: the second was lost. Now a
+//!   neighbourhood narrower than 1e-6 of the box gets 64 boxes of its own, and the
+//!   candidates left are one per cluster of touching boxes (docs/method.md §31.4).
 #![allow(clippy::unwrap_used)]
 
 mod common;
