@@ -95,7 +95,12 @@ fn study_curve(rng: &mut SplitMix64, p: usize, wavy: bool) -> Curve {
             .collect()
     } else {
         (0..=n)
-            .map(|_| [rng.range(0.0, n as f64 / 2.0), rng.range(0.0, n as f64 / 2.0)])
+            .map(|_| {
+                [
+                    rng.range(0.0, n as f64 / 2.0),
+                    rng.range(0.0, n as f64 / 2.0),
+                ]
+            })
             .collect()
     };
     let gaps: Vec<f64> = (0..n - p + 1).map(|_| rng.range(0.5, 1.5)).collect();
@@ -186,9 +191,7 @@ fn mesh_reach(
                 let x = sbox.at(&[s0, s1]);
                 let knots = problem.knots_with(&unknowns, &x);
                 // The span's collapse (both its ends at t) has no point.
-                singular.push(
-                    sbox.span_ends.is_some() && x[0] == problem.t && x[1] == problem.t,
-                );
+                singular.push(sbox.span_ends.is_some() && x[0] == problem.t && x[1] == problem.t);
                 let m = problem.evaluation_span(&knots);
                 let p = net.point_in_span(&knots, m, t);
                 vertices.push([p[0], p[1]]);
@@ -282,8 +285,11 @@ fn main() {
                         .collect();
                     let mut hits = vec![0usize; columns.len()];
                     for target in &targets {
-                        let outcome =
-                            solve_families(&query, FamilyChoice::Default, [target[0], target[1], 0.0]);
+                        let outcome = solve_families(
+                            &query,
+                            FamilyChoice::Default,
+                            [target[0], target[1], 0.0],
+                        );
                         solves += 1;
                         let by = |family: Family, side: Option<Side>| {
                             outcome
@@ -309,11 +315,22 @@ fn main() {
                     if options.mesh {
                         let mut envelope = vec![false; targets.len()];
                         for side in [Side::Left, Side::Right] {
-                            mesh_reach(&curve, t, Family::Envelope, Some(side), &targets, &mut envelope);
+                            mesh_reach(
+                                &curve,
+                                t,
+                                Family::Envelope,
+                                Some(side),
+                                &targets,
+                                &mut envelope,
+                            );
                         }
                         let mut direct = vec![false; targets.len()];
                         mesh_reach(&curve, t, Family::Direct, None, &targets, &mut direct);
-                        let both = envelope.iter().zip(&direct).filter(|(a, b)| **a || **b).count();
+                        let both = envelope
+                            .iter()
+                            .zip(&direct)
+                            .filter(|(a, b)| **a || **b)
+                            .count();
                         hits[6] = envelope.iter().filter(|a| **a).count();
                         hits[7] = direct.iter().filter(|a| **a).count();
                         hits[8] = both;

@@ -25,6 +25,14 @@
 //!   uncertified candidates kept all lay at that root: the second was lost. Now a
 //!   neighbourhood narrower than 1e-6 of the box gets 64 boxes of its own, and the
 //!   candidates left are one per cluster of touching boxes (docs/method.md §31.4).
+//!
+//! Open (not fixed; the case asserts what the solver does today, and fails once it is fixed):
+//!
+//! * D5 — a degree-4 curve's direct pair of two neighbouring knots below `t` (full indices
+//!   5, 6; both between the fixed knot 1.0826 and `t`): the brute force finds a
+//!   well-conditioned root (conditioning 2.6e-2, 0.16 of the box inside) that the answer
+//!   lacks, in main's subdivision as in this one (found by the regions property, seed
+//!   0x0b0ff5ffb45fdb51, whose case asserts exactly this mismatch). Cause not yet found.
 #![allow(clippy::unwrap_used)]
 
 mod common;
@@ -193,5 +201,55 @@ fn d4_both_solutions_next_to_a_fold_are_found() {
             vec![-0.0934497409159008, 1.3894138647693457],
             vec![-0.0933502617166108, 1.3892216075004733],
         ],
+    );
+}
+
+/// D5 (open): the regions property's case 0x0b0ff5ffb45fdb51 (a random degree-4 2D curve):
+/// the direct pair (u_5, u_6) has one well-conditioned root for this target that the answer
+/// lacks. Asserted as it is today: the brute force has the root, the answer does not (and
+/// every solution it gives checks out). When this fails because the root is found, D5 is
+/// fixed: move the case to `assert_found` and drop the property's exception.
+#[test]
+fn d5_open_a_neighbour_pair_below_t_misses_a_well_conditioned_root() {
+    use common::SplitMix64;
+    use common::families::{BruteOptions, CurveKind, brute_force, random_curve, random_parameter};
+    let mut rng = SplitMix64::new(0x0b0f_f5ff_b45f_db51);
+    let mut kind = CurveKind::random(&mut rng, 2..=5);
+    kind.dimension = 2;
+    let curve = random_curve(&mut rng, &kind);
+    let t = random_parameter(&mut rng, &curve);
+    assert_eq!(curve.degree(), 4);
+    let target = [4.044620269805664, -1.0312627713553562, 0.0];
+    let problem = setup(&curve, t, Family::Direct, None, true).unwrap();
+    let sbox = SetBox::new(&problem, &[5, 6]).unwrap();
+    let brute = brute_force(
+        &Net::of(&curve),
+        &problem,
+        &sbox,
+        target,
+        BruteOptions::pairs(),
+    );
+    let required: Vec<_> = brute
+        .roots
+        .iter()
+        .filter(|r| r.inside > 0.1 && r.conditioning > 1e-2)
+        .collect();
+    assert_eq!(required.len(), 1, "{:?}", brute.roots);
+    let outcome = solve_families(&query(&curve, t, None, true), only(Family::Direct), target);
+    for solution in &outcome.solutions {
+        check_solution(&curve, &problem, target, solution).unwrap_or_else(|e| panic!("{e}"));
+    }
+    let planted = Planted {
+        unknowns: vec![5, 6],
+        x: required[0].x.clone(),
+        target,
+        inside: required[0].inside,
+        conditioning: required[0].conditioning,
+    };
+    assert!(planted.required());
+    assert!(
+        !planted_found(&curve, &problem, &planted, &outcome.solutions),
+        "D5 is fixed: the root {:?} is found; make this an assert_found case",
+        required[0].x
     );
 }

@@ -460,7 +460,8 @@ fn refine_univariate(
         next[0] = (s[0] - value[0] / derivative[0]).clamp(0.0, 1.0);
         let mut next_value = [0.0];
         f.evaluate(next, &mut next_value);
-        if !(next_value[0].abs() < value[0].abs()) {
+        // A NaN step ends it too.
+        if next_value[0].abs().is_nan() || next_value[0].abs() >= value[0].abs() {
             break;
         }
         s = next;
