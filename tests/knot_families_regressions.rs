@@ -32,7 +32,12 @@
 //!   5, 6; both between the fixed knot 1.0826 and `t`): the brute force finds a
 //!   well-conditioned root (conditioning 2.6e-2, 0.16 of the box inside) that the answer
 //!   lacks, in main's subdivision as in this one (found by the regions property, seed
-//!   0x0b0ff5ffb45fdb51, whose case asserts exactly this mismatch). Cause not yet found.
+//!   0x0b0ff5ffb45fdb51, whose case asserts exactly this mismatch). Seen so far: the pair is
+//!   local `(q − 1, q)` (subdivision), it takes all its 4096 boxes, and what comes back is
+//!   only uncertified candidates at `t_q ≈ ũ` (the span closing onto `t` from below, the box's
+//!   edge `s₁ = 1`, `t_{q−1} ≈ 1.8704`), none of them a solution; the root at
+//!   `(2.231, 2.901)` is never reached. Likely fix: the factor of `F` that vanishes where
+//!   `t_q = ũ` (a collapse like D3's) divided out, or that edge excluded, before subdividing.
 #![allow(clippy::unwrap_used)]
 
 mod common;
