@@ -5,6 +5,7 @@
 #![allow(clippy::unwrap_used)]
 
 pub mod compare;
+pub mod families;
 pub mod nurbs;
 
 use knotshape::shape::{KnotPair, Side};

@@ -11,8 +11,10 @@
 //!   holds none. Otherwise the box is cut across its widest side (a little off the middle).
 //!
 //! Boxes narrower than [`IsolationOptions::min_width`] in every variable (at a singular root,
-//! where no test can succeed) and the boxes left when the budget runs out are returned as
-//! uncertified candidates; the caller verifies every root independently either way.
+//! where no test can succeed), the boxes left when the budget runs out, and those left in a
+//! neighbourhood narrower than [`NEIGHBOURHOOD_WIDTH`] when its own share of the budget
+//! ([`NEIGHBOURHOOD_BOXES`]) runs out are returned as uncertified candidates, one per cluster
+//! of touching boxes; the caller verifies every root independently either way.
 
 use super::tensor::{MAX_VARIABLES, Tensor};
 
@@ -24,6 +26,18 @@ pub const ZERO_MARGIN: f64 = 1e-12;
 /// that roots at simple values (a planted solution, a symmetric system) do not fall on a cut,
 /// where no box could certify them.
 const CUT: f64 = 0.4921875;
+
+/// A box at most this wide in every variable (unit-box coordinates) starts a neighbourhood
+/// of its own, which may examine at most [`NEIGHBOURHOOD_BOXES`] boxes: the neighbourhood of
+/// a root that no test can decide (a near-singular root, whose equations stay within the
+/// rounding margin of zero along a sliver of boxes) must not take the whole budget from the
+/// roots elsewhere. What is left of it when its share runs out is returned as candidates.
+const NEIGHBOURHOOD_WIDTH: f64 = 1e-6;
+
+/// Boxes one neighbourhood ([`NEIGHBOURHOOD_WIDTH`]) may examine at most: a simple root
+/// there is certified in a few, two roots a hundredth of the neighbourhood apart in some
+/// twenty.
+const NEIGHBOURHOOD_BOXES: usize = 64;
 
 /// Krawczyk's test is tried on boxes at most this wide (unit-box coordinates) in every
 /// variable: on larger ones the interval Jacobian is too loose for it to succeed.
@@ -40,7 +54,8 @@ pub struct IsolationOptions {
     pub max_boxes: usize,
     /// A box narrower than this in every variable (unit-box coordinates) is not cut again.
     pub min_width: f64,
-    /// Uncertified candidates returned at most (the best by `|F(c)|` when more are left).
+    /// Uncertified candidates returned at most: one per cluster of touching boxes left
+    /// undecided (the box with the smallest `|F(c)|` of each), the best clusters first.
     pub max_candidates: usize,
 }
 
@@ -80,6 +95,26 @@ struct Cell {
     lo: [f64; MAX_VARIABLES],
     width: [f64; MAX_VARIABLES],
     system: Tensor,
+    /// The neighbourhood ([`NEIGHBOURHOOD_WIDTH`]) it lies in, an index into the boxes each
+    /// has left.
+    neighbourhood: Option<usize>,
+}
+
+/// A box left undecided: its corner, widths and `max_i |F_i(c)|` at its centre.
+struct Candidate {
+    lo: [f64; MAX_VARIABLES],
+    width: [f64; MAX_VARIABLES],
+    residual: f64,
+}
+
+impl Candidate {
+    fn of(cell: &Cell, n: usize) -> Candidate {
+        Candidate {
+            lo: cell.lo,
+            width: cell.width,
+            residual: centre_residual(cell, n),
+        }
+    }
 }
 
 /// An interval `[lo, hi]`.
@@ -109,18 +144,31 @@ pub fn isolate(
     let n = variables;
     let margin: Vec<f64> = (0..n).map(|i| ZERO_MARGIN * system.magnitude(i)).collect();
     let mut isolation = Isolation::default();
-    let mut candidates: Vec<(f64, IsolatedRoot)> = Vec::new();
+    let mut candidates: Vec<Candidate> = Vec::new();
+    // Boxes each neighbourhood may still examine.
+    let mut shares: Vec<usize> = Vec::new();
     let mut stack = vec![Cell {
         lo: [0.0; MAX_VARIABLES],
         width: [1.0, 1.0, 1.0].map(|w: f64| w),
         system: system.clone(),
+        neighbourhood: None,
     }];
-    while let Some(cell) = stack.pop() {
+    while let Some(mut cell) = stack.pop() {
         if isolation.boxes >= options.max_boxes {
             isolation.exhausted = true;
-            let residual = centre_residual(&cell, n);
-            candidates.push((residual, uncertified(&cell)));
+            candidates.push(Candidate::of(&cell, n));
             continue;
+        }
+        if cell.neighbourhood.is_none() && (0..n).all(|k| cell.width[k] <= NEIGHBOURHOOD_WIDTH) {
+            cell.neighbourhood = Some(shares.len());
+            shares.push(NEIGHBOURHOOD_BOXES);
+        }
+        if let Some(share) = cell.neighbourhood.map(|i| &mut shares[i]) {
+            if *share == 0 {
+                candidates.push(Candidate::of(&cell, n));
+                continue;
+            }
+            *share -= 1;
         }
         isolation.boxes += 1;
         if outside(cell.lo, cell.width) || excluded(&cell.system, n, &margin) {
@@ -168,8 +216,7 @@ pub fn isolate(
             .filter(|&k| cell.system.degrees[k] > 0 && cell.width[k] > options.min_width)
             .max_by(|&a, &b| cell.width[a].total_cmp(&cell.width[b]));
         let Some(k) = split else {
-            let residual = centre_residual(&cell, n);
-            candidates.push((residual, uncertified(&cell)));
+            candidates.push(Candidate::of(&cell, n));
             continue;
         };
         let (left, right) = cell.system.split(k, CUT);
@@ -182,31 +229,81 @@ pub fn isolate(
             lo: right_lo,
             width: right_width,
             system: right,
+            neighbourhood: cell.neighbourhood,
         });
         stack.push(Cell {
             lo: cell.lo,
             width: left_width,
             system: left,
+            neighbourhood: cell.neighbourhood,
         });
     }
-    candidates.sort_by(|a, b| a.0.total_cmp(&b.0));
-    candidates.truncate(options.max_candidates);
     isolation
         .roots
-        .extend(candidates.into_iter().map(|(_, root)| root));
+        .extend(representatives(&candidates, n, options.max_candidates));
     isolation
 }
 
-/// The box centre as an uncertified candidate.
-fn uncertified(cell: &Cell) -> IsolatedRoot {
-    let mut point = [0.0; MAX_VARIABLES];
-    for k in 0..MAX_VARIABLES {
-        point[k] = cell.lo[k] + 0.5 * cell.width[k];
+/// At most `limit` uncertified candidates, one per cluster of touching boxes (the box of the
+/// cluster with the smallest `|F(c)|`, at its centre), best first: the boxes left around one
+/// root (a near-singular one leaves a sliver of them) stand for it once, so that the
+/// candidates reach every place where a root may be.
+fn representatives(candidates: &[Candidate], n: usize, limit: usize) -> Vec<IsolatedRoot> {
+    fn find(parent: &mut [usize], mut i: usize) -> usize {
+        while parent[i] != i {
+            parent[i] = parent[parent[i]];
+            i = parent[i];
+        }
+        i
     }
-    IsolatedRoot {
-        point,
-        certified: false,
+    let count = candidates.len();
+    let mut parent: Vec<usize> = (0..count).collect();
+    let slack = |a: &Candidate, b: &Candidate, k: usize| 1e-9 * a.width[k].max(b.width[k]);
+    let touch = |a: &Candidate, b: &Candidate| {
+        (0..n).all(|k| {
+            a.lo[k] <= b.lo[k] + b.width[k] + slack(a, b, k)
+                && b.lo[k] <= a.lo[k] + a.width[k] + slack(a, b, k)
+        })
+    };
+    // Union–find of the touching boxes, by a sweep along the first variable.
+    let mut order: Vec<usize> = (0..count).collect();
+    order.sort_by(|&a, &b| candidates[a].lo[0].total_cmp(&candidates[b].lo[0]));
+    for (position, &a) in order.iter().enumerate() {
+        let box_a = &candidates[a];
+        for &b in &order[position + 1..] {
+            let box_b = &candidates[b];
+            if box_b.lo[0] > box_a.lo[0] + box_a.width[0] + slack(box_a, box_b, 0) {
+                break;
+            }
+            if touch(box_a, box_b) {
+                let (ra, rb) = (find(&mut parent, a), find(&mut parent, b));
+                parent[ra] = rb;
+            }
+        }
     }
+    let mut best: Vec<Option<usize>> = vec![None; count];
+    for i in 0..count {
+        let r = find(&mut parent, i);
+        if best[r].is_none_or(|j| candidates[i].residual < candidates[j].residual) {
+            best[r] = Some(i);
+        }
+    }
+    let mut kept: Vec<usize> = best.into_iter().flatten().collect();
+    kept.sort_by(|&a, &b| candidates[a].residual.total_cmp(&candidates[b].residual));
+    kept.truncate(limit);
+    kept.into_iter()
+        .map(|i| {
+            let c = &candidates[i];
+            let mut point = [0.0; MAX_VARIABLES];
+            for k in 0..MAX_VARIABLES {
+                point[k] = c.lo[k] + 0.5 * c.width[k];
+            }
+            IsolatedRoot {
+                point,
+                certified: false,
+            }
+        })
+        .collect()
 }
 
 /// `max_i |F_i(c)|` at the box centre (to rank uncertified candidates).
@@ -387,7 +484,12 @@ fn reduce(cell: &Cell, n: usize, interval: &[(f64, f64); MAX_VARIABLES]) -> Opti
         lo[k] += a * width[k];
         width[k] *= b - a;
     }
-    Some(Cell { lo, width, system })
+    Some(Cell {
+        lo,
+        width,
+        system,
+        neighbourhood: cell.neighbourhood,
+    })
 }
 
 /// Krawczyk's test on the cell's own unit box (module docs), with the interval Jacobian and

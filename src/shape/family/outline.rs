@@ -78,11 +78,18 @@ pub fn pair_outline(
     let domain = PairDomain::new(problem, unknowns)?;
     let map = |uv: (f64, f64)| plane.coordinates(point_at(problem, unknowns, &domain, uv));
     let folded = !fold_free(problem, unknowns, plane);
-    let (contours, tolerance_met) = if folded {
+    let (mut contours, tolerance_met) = if folded {
         mesh_polygons(&map, tolerance, max_vertices)
     } else {
         boundary(&map, tolerance, max_vertices)
     };
+    if folded {
+        // Pieces of the mesh without area (thinner than a millionth of their size) add
+        // nothing to the union, and a map that is degenerate on whole cells (its image there a
+        // curve: a quadratic's span pair of a rational curve) makes a thousand of them, on
+        // which the union does not finish.
+        contours.retain(|ring| area(ring).abs() > 1e-6 * perimeter(ring).powi(2));
+    }
     let shapes = contours.simplify_shape(FillRule::NonZero);
     // Holes thinner than the tolerance are the mesh's seams, not holes of the region.
     let rings: Vec<Vec<Point>> = shapes

@@ -3,7 +3,7 @@
 //! linear system), certified subdivision ([`super::isolate`]) for the rest, each root then
 //! polished by Newton's method on de Boor itself and checked against the admissible box.
 
-use super::isolate::{IsolationOptions, invert, isolate};
+use super::isolate::{IsolationOptions, ZERO_MARGIN, invert, isolate};
 use super::local::{LocalProblem, SearchBox};
 use super::tensor::{MAX_VARIABLES, Tensor};
 use crate::shape::candidate::{Frame, triangle_frame};
@@ -26,6 +26,9 @@ pub const TRIPLE_BOXES: usize = 8192;
 
 /// Newton steps at most when polishing a root on de Boor.
 const POLISH_STEPS: usize = 8;
+
+/// Newton steps at most when refining a root of a pair's univariate equation.
+const UNIVARIATE_STEPS: usize = 40;
 
 /// A solution of one unknown set: the whole local knot vector.
 #[derive(Debug, Clone, PartialEq)]
@@ -337,8 +340,15 @@ fn one_outermost(
     } else {
         (2 * q, unknowns[0], (q, 1))
     };
-    // Without a margin, so that the span's collapse (below) sits exactly at an end.
-    let search = problem.search_box(&[other], 0.0, 0.0)?;
+    // The other knot ranges over its interval in the pair's box: the outer knot moves too,
+    // so a neighbour of it is bounded by the next fixed knot, not by the outer knot's old
+    // value (which `search_box(&[other], ..)` would hold fixed). Without a margin, so that the
+    // span's collapse (below) sits exactly at an end.
+    let pair = problem.search_box(unknowns, 0.0, 0.0)?;
+    let position = unknowns.iter().position(|&m| m == other)?;
+    let mut search = problem.search_box(&[other], 0.0, 0.0)?;
+    search.admissible = vec![pair.admissible[position]];
+    search.bounds = vec![pair.admissible[position]];
     let project = |numerator: &Tensor| -> [Tensor; 2] {
         [0, 1].map(|i| {
             let e = rows[i];
@@ -362,20 +372,33 @@ fn one_outermost(
     let f0s = [f0[0].clone().scaled(), f0[1].clone().scaled()];
     // The outer knot's leverage is a product of `q - 1` ratios that all vanish when the other
     // knot closes `t`'s span onto `ũ` (the pairs (t_1, t_{q+1}) and (t_q, t_{2q})): `G` has
-    // the factor `(b - ũ)^{q-1}` there, a root of `g` on the box's edge that is no solution.
-    // It is divided out.
+    // the factor `(b - ũ)^k` there, a root of `g` on the box's edge that is no solution. It
+    // is divided out. `k = q - 1` unless fixed knots at `ũ` force some of those ratios (`t`
+    // on a knot): the order is read off the coefficients, the leading ones at that end that
+    // vanish (up to rounding) in both components.
     let collapse = match (outer == 1, other) {
         (true, m) if m == q + 1 => Some(true),
         (false, m) if m == q => Some(false),
         _ => None,
     };
     let g_reduced: [Tensor; 2] = match collapse {
-        Some(at_start) => [0, 1].map(|i| {
-            g[i].clone()
-                .unscaled()
-                .divided_at_end(q - 1, at_start)
-                .scaled()
-        }),
+        Some(at_start) => {
+            let order = |t: &Tensor| {
+                let c = &t.coefficients;
+                let big = c.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+                let n = c.len();
+                (0..n)
+                    .take_while(|&k| {
+                        let i = if at_start { k } else { n - 1 - k };
+                        c[i].abs() <= ZERO_MARGIN * big
+                    })
+                    .count()
+            };
+            let u0 = g[0].clone().unscaled();
+            let u1 = g[1].clone().unscaled();
+            let k = order(&u0).min(order(&u1)).min(q - 1);
+            [u0, u1].map(|u| u.divided_at_end(k, at_start).scaled())
+        }
         None => g.clone(),
     };
     let cross = f0s[0]
@@ -390,8 +413,12 @@ fn one_outermost(
     *budget = budget.saturating_sub(isolation.boxes);
     let (g0, g1) = (g[0].clone().unscaled(), g[1].clone().unscaled());
     let mut found = Vec::new();
+    let slope = cross.derivative(0);
     for root in isolation.roots {
-        let s = root.point;
+        // The isolating box's centre is refined on `g` first: the outer knot extrapolated
+        // from `α_A` at a point off the root can be far from the solution, beyond the reach of
+        // the polish on de Boor.
+        let s = refine_univariate(&cross, &slope, root.point);
         let (mut v0, mut v1, mut w0, mut w1) = ([0.0], [0.0], [0.0], [0.0]);
         f0[0].evaluate(s, &mut v0);
         f0[1].evaluate(s, &mut v1);
@@ -413,6 +440,34 @@ fn one_outermost(
         }
     }
     Some(found)
+}
+
+/// Newton's method on the univariate polynomial `f` (derivative `slope`) from `start`, kept
+/// in the unit interval; a step that fails to lower `|f|` ends it.
+fn refine_univariate(
+    f: &Tensor,
+    slope: &Tensor,
+    start: [f64; MAX_VARIABLES],
+) -> [f64; MAX_VARIABLES] {
+    let (mut s, mut value, mut derivative) = (start, [0.0], [0.0]);
+    f.evaluate(s, &mut value);
+    for _ in 0..UNIVARIATE_STEPS {
+        if value[0] == 0.0 {
+            break;
+        }
+        slope.evaluate(s, &mut derivative);
+        let mut next = s;
+        next[0] = (s[0] - value[0] / derivative[0]).clamp(0.0, 1.0);
+        let mut next_value = [0.0];
+        f.evaluate(next, &mut next_value);
+        // A NaN step ends it too.
+        if next_value[0].abs().is_nan() || next_value[0].abs() >= value[0].abs() {
+            break;
+        }
+        s = next;
+        value = next_value;
+    }
+    s
 }
 
 /// Whether two neighbouring unknowns (local indices `m`, `m + 1`) are out of order on the
