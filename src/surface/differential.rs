@@ -110,7 +110,7 @@ pub fn curvature(partials: &Partials, normal: Point) -> Option<Curvature> {
     let (e, f, g) = (dot(du, du), dot(du, dv), dot(dv, dv));
     let area = norm(cross(du, dv));
     let [scale_u, scale_v] = partials.scales;
-    if !(area > NORMAL_DEGENERACY * scale_u * scale_v) {
+    if area.is_nan() || area <= NORMAL_DEGENERACY * scale_u * scale_v {
         return None;
     }
     let determinant = area * area;
@@ -202,7 +202,7 @@ mod tests {
             let along = dot(normal, point);
             assert!((along.abs() - 1.0).abs() < 1e-13, "{along}");
             let curvature = curvature(&partials, normal).unwrap();
-            let k = along.signum() * -1.0;
+            let k = -along.signum();
             assert!((curvature.gaussian - 1.0).abs() < 1e-12);
             assert!((curvature.mean - k).abs() < 1e-12);
             assert!((curvature.principal[0] - k).abs() < 1e-6);

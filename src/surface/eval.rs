@@ -111,6 +111,8 @@ impl Surface {
     }
 
     /// [`Surface::partials`] on the patch `(a, b)`.
+    // The loops fill tables indexed by level and by row or column at once.
+    #[allow(clippy::needless_range_loop)]
     pub(crate) fn partials_in_spans(
         &self,
         a: usize,

@@ -64,16 +64,6 @@ impl Axis {
         }
     }
 
-    /// The axis of a curve (its degree, knots, convention and periodic layout).
-    pub(crate) fn of_curve(curve: &Curve) -> Axis {
-        Axis {
-            degree: curve.degree(),
-            knots: curve.knots().to_vec(),
-            convention: curve.convention(),
-            periodic: curve.periodicity(),
-        }
-    }
-
     /// The degree.
     pub fn degree(&self) -> usize {
         self.degree
@@ -92,11 +82,6 @@ impl Axis {
     /// Whether the caller gave this direction in the periodic form.
     pub fn is_periodic(&self) -> bool {
         self.periodic.is_some()
-    }
-
-    /// The periodic layout.
-    pub(crate) fn periodicity(&self) -> Option<Periodicity> {
-        self.periodic
     }
 
     /// The number of control points along this direction (of the cut-open spline).
@@ -188,27 +173,6 @@ impl Surface {
         }
     }
 
-    /// A surface from homogeneous control points (projected; weights kept when `rational`).
-    pub(crate) fn from_homogeneous(
-        u: Axis,
-        v: Axis,
-        homogeneous: &[[f64; 4]],
-        rational: bool,
-    ) -> Surface {
-        let points = homogeneous
-            .iter()
-            .map(|h| {
-                if rational {
-                    [h[0] / h[3], h[1] / h[3], h[2] / h[3]]
-                } else {
-                    [h[0], h[1], h[2]]
-                }
-            })
-            .collect();
-        let weights = rational.then(|| homogeneous.iter().map(|h| h[3]).collect());
-        Surface::from_valid_parts(u, v, points, weights)
-    }
-
     /// The direction `direction`.
     pub fn axis(&self, direction: Direction) -> &Axis {
         match direction {
@@ -251,12 +215,6 @@ impl Surface {
             .map_or(1.0, |w| w[i * self.v.count() + j])
     }
 
-    /// The homogeneous control point `(w d, w)` of `(i, j)`.
-    #[inline]
-    pub(crate) fn homogeneous_at(&self, i: usize, j: usize) -> [f64; 4] {
-        self.homogeneous[i * self.v.count() + j]
-    }
-
     /// Every control point, row by row (`d_ij` at `i · count_v + j`).
     pub fn control_points(&self) -> &[Point] {
         &self.points
@@ -265,11 +223,6 @@ impl Surface {
     /// Every weight, row by row, when rational.
     pub fn weights(&self) -> Option<&[f64]> {
         self.weights.as_deref()
-    }
-
-    /// The homogeneous control points, row by row.
-    pub(crate) fn homogeneous(&self) -> &[[f64; 4]] {
-        &self.homogeneous
     }
 
     /// The control points as the caller gave them: `caller_count_u` rows of
@@ -328,32 +281,6 @@ impl Surface {
             .is_rational()
             .then(|| (0..self.v.count()).map(|j| self.weight(i, j)).collect());
         curve_of(&self.v, points, weights)
-    }
-
-    /// The surface whose columns are `columns` (curves along `u` sharing their knots, as
-    /// [`Surface::column`] gives them, e.g. after the same knot insertion) with this surface's
-    /// `v` direction. Precondition: at least one column, all of one layout.
-    pub(crate) fn with_columns(&self, columns: &[Curve]) -> Surface {
-        let u = Axis::of_curve(&columns[0]);
-        let (n_u, n_v) = (u.count(), columns.len());
-        let mut homogeneous = vec![[0.0; 4]; n_u * n_v];
-        for (j, column) in columns.iter().enumerate() {
-            for (i, h) in column.homogeneous().iter().enumerate() {
-                homogeneous[i * n_v + j] = *h;
-            }
-        }
-        Surface::from_homogeneous(u, self.v.clone(), &homogeneous, self.is_rational())
-    }
-
-    /// The surface whose rows are `rows` (curves along `v`) with this surface's `u` direction
-    /// (see [`Surface::with_columns`]).
-    pub(crate) fn with_rows(&self, rows: &[Curve]) -> Surface {
-        let v = Axis::of_curve(&rows[0]);
-        let homogeneous: Vec<[f64; 4]> = rows
-            .iter()
-            .flat_map(|row| row.homogeneous().iter().copied())
-            .collect();
-        Surface::from_homogeneous(self.u.clone(), v, &homogeneous, self.is_rational())
     }
 
     /// The diagonal of the control points' bounding box.

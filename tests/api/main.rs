@@ -28,3 +28,5 @@ mod reference;
 mod regions_constraints;
 mod shape;
 mod shutdown;
+mod surface_errors;
+mod surfaces;

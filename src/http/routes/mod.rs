@@ -11,6 +11,8 @@ pub mod toolkit;
 pub mod from_points;
 pub mod length;
 pub mod reshape;
+// Surfaces (fourth release).
+pub mod surfaces;
 
 use axum::Extension;
 

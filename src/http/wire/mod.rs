@@ -15,3 +15,5 @@ pub mod from_points;
 pub mod length;
 pub mod reshape;
 pub mod toolkit_parse;
+// Surfaces (fourth release).
+pub mod surfaces;
