@@ -94,7 +94,7 @@ pub(crate) fn hodograph_difference(factor: f64, q: [f64; 4], before: [f64; 4]) -
 }
 
 /// `binom(k, i)` as a float (exact for the small orders used here).
-pub(crate) fn binomial(k: usize, i: usize) -> f64 {
+fn binomial(k: usize, i: usize) -> f64 {
     let i = i.min(k - i);
     (0..i).fold(1.0, |acc, r| acc * (k - r) as f64 / (r + 1) as f64)
 }

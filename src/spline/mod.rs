@@ -43,7 +43,7 @@ pub(crate) use basis::{CAP, basis_functions, basis_functions_of_every_degree, fi
 pub(crate) use curve::validate_knots;
 pub use envelope::{EnvelopeError, KnotRun};
 pub use eval::{BatchEvaluator, EvalError};
-pub(crate) use eval::{binomial, first_hodograph_point, hodograph_difference, multiply_add};
+pub(crate) use eval::{first_hodograph_point, hodograph_difference, multiply_add};
 pub use insert::{EDITING_KNOT_SPACING, EDITING_KNOTS_EACH_SIDE, InsertError};
 pub(crate) use periodic::Periodicity;
 pub use periodic::{PeriodicWindow, WrapError};

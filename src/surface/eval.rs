@@ -16,9 +16,8 @@
 //! limit from the left), as for the curves.
 
 use super::surface::Surface;
-use crate::spline::vector::norm;
 use crate::spline::{
-    CAP, Point, basis_functions, basis_functions_of_every_degree, binomial, first_hodograph_point,
+    CAP, Point, basis_functions, basis_functions_of_every_degree, first_hodograph_point,
     hodograph_difference, multiply_add,
 };
 
@@ -75,7 +74,8 @@ impl Surface {
             let j = b - q + s;
             let mut column = [0.0; 4];
             for (r, &n) in nu[..=p].iter().enumerate() {
-                let h = self.local(a - p + r, j, origin);
+                let i = a - p + r;
+                let h = local(self.control_point(i, j), self.weight(i, j), origin);
                 for c in 0..4 {
                     column[c] = multiply_add(n, h[c], column[c]);
                 }
@@ -91,19 +91,6 @@ impl Surface {
         }
     }
 
-    /// `(w (d_ij - O), w)`.
-    #[inline(always)]
-    fn local(&self, i: usize, j: usize, origin: Point) -> [f64; 4] {
-        let d = self.control_point(i, j);
-        let w = self.weight(i, j);
-        [
-            w * (d[0] - origin[0]),
-            w * (d[1] - origin[1]),
-            w * (d[2] - origin[2]),
-            w,
-        ]
-    }
-
     /// The point and its partials up to `order` (at most [`MAX_PARTIAL_ORDER`]) at `(u, v)`
     /// in the domain (module docs).
     pub fn partials(&self, u: f64, v: f64, order: usize) -> Partials {
@@ -111,8 +98,6 @@ impl Surface {
     }
 
     /// [`Surface::partials`] on the patch `(a, b)`.
-    // The loops fill tables indexed by level and by row or column at once.
-    #[allow(clippy::needless_range_loop)]
     pub(crate) fn partials_in_spans(
         &self,
         a: usize,
@@ -129,71 +114,107 @@ impl Surface {
             }
             .with_point(self.point_in_spans(a, b, u, v));
         }
+        // Buffers sized for the degrees: low degrees (every real cubic) keep them small.
+        match self.u().degree().max(self.v().degree()) {
+            0..=3 => self.partials_sized::<4>(a, b, u, v, order),
+            4..=7 => self.partials_sized::<8>(a, b, u, v, order),
+            _ => self.partials_sized::<CAP>(a, b, u, v, order),
+        }
+    }
+
+    /// [`Surface::partials_in_spans`] with buffers of `N > max(p, q)` entries (module docs).
+    // The loops fill tables indexed by level and by row or column at once.
+    #[allow(clippy::needless_range_loop)]
+    #[inline(always)]
+    fn partials_sized<const N: usize>(
+        &self,
+        a: usize,
+        b: usize,
+        u: f64,
+        v: f64,
+        order: usize,
+    ) -> Partials {
         let (p, q) = (self.u().degree(), self.v().degree());
         let (ku, kv) = (self.u().knots(), self.v().knots());
-        let mut nu = [[0.0; CAP]; CAP];
-        let mut nv = [[0.0; CAP]; CAP];
+        let mut nu = [[0.0; N]; N];
+        let mut nv = [[0.0; N]; N];
         basis_functions_of_every_degree(ku, p, a, u, &mut nu);
         basis_functions_of_every_degree(kv, q, b, v, &mut nv);
-        let origin = self.control_point(a - p, b - q);
+        // The patch's control points and weights, read once.
+        let mut points = [[[0.0; 3]; N]; N];
+        let mut weights = [[1.0; N]; N];
+        for r in 0..=p {
+            for s in 0..=q {
+                points[r][s] = self.control_point(a - p + r, b - q + s);
+                weights[r][s] = self.weight(a - p + r, b - q + s);
+            }
+        }
+        let origin = points[0][0];
         let (top_u, top_v) = (order.min(p), order.min(q));
-        let mut min_weight = f64::INFINITY;
-        let mut scales = [0.0f64; 2];
+        // The hodographs' factors `(p - k + 1) / (t_{i+p-k+1} - t_i)`, once per direction.
+        let mut factors_u = [[0.0; N]; MAX_PARTIAL_ORDER + 1];
+        for k in 1..=top_u {
+            for r in k..=p {
+                let i = a - p + r;
+                factors_u[k][r] = (p - k + 1) as f64 / (ku[i + p - k + 1] - ku[i]);
+            }
+        }
+        let mut factors_v = [[0.0; N]; MAX_PARTIAL_ORDER + 1];
+        for l in 1..=top_v {
+            for s in l..=q {
+                let j = b - q + s;
+                factors_v[l][s] = (q - l + 1) as f64 / (kv[j + q - l + 1] - kv[j]);
+            }
+        }
+        // Squared largest first hodograph points in u and v, for the scales.
+        let mut largest = [0.0f64; 2];
+        let mut level = [[0.0; 4]; N];
         // Per column s of the patch: the u-hodograph levels k of the column (from the data),
         // summed against N_{·,p-k}(u): column[k][s].
-        let mut column = [[[0.0; 4]; CAP]; MAX_PARTIAL_ORDER + 1];
+        let mut column = [[[0.0; 4]; N]; MAX_PARTIAL_ORDER + 1];
         for s in 0..=q {
-            let j = b - q + s;
-            let mut level = [[0.0; 4]; CAP];
-            for (r, slot) in level.iter_mut().enumerate().take(p + 1) {
-                *slot = self.local(a - p + r, j, origin);
-                min_weight = min_weight.min(slot[3]);
+            for r in 0..=p {
+                level[r] = local(points[r][s], weights[r][s], origin);
             }
             column[0][s] = contract(&level[..=p], &nu[p][..=p]);
             for k in 1..=top_u {
                 for r in (k..=p).rev() {
-                    let i = a - p + r;
-                    let factor = (p - k + 1) as f64 / (ku[i + p - k + 1] - ku[i]);
+                    let factor = factors_u[k][r];
                     level[r] = if k == 1 {
-                        first_hodograph_point(
+                        let h = first_hodograph_point(
                             factor,
-                            (self.control_point(i, j), self.weight(i, j)),
-                            (self.control_point(i - 1, j), self.weight(i - 1, j)),
+                            (points[r][s], weights[r][s]),
+                            (points[r - 1][s], weights[r - 1][s]),
                             origin,
-                        )
+                        );
+                        largest[0] = largest[0].max(squared(h));
+                        h
                     } else {
                         hodograph_difference(factor, level[r], level[r - 1])
                     };
-                    if k == 1 {
-                        scales[0] = scales[0].max(norm([level[r][0], level[r][1], level[r][2]]));
-                    }
                 }
                 column[k][s] = contract(&level[k..=p], &nu[p - k][..=p - k]);
             }
         }
         // Per row r of the patch: the v-hodograph levels l >= 1 (from the data), summed
         // against M_{·,q-l}(v): row[l][r].
-        let mut row = [[[0.0; 4]; CAP]; MAX_PARTIAL_ORDER + 1];
+        let mut row = [[[0.0; 4]; N]; MAX_PARTIAL_ORDER + 1];
         for r in 0..=p {
-            let i = a - p + r;
-            let mut level = [[0.0; 4]; CAP];
             for l in 1..=top_v {
                 for s in (l..=q).rev() {
-                    let j = b - q + s;
-                    let factor = (q - l + 1) as f64 / (kv[j + q - l + 1] - kv[j]);
+                    let factor = factors_v[l][s];
                     level[s] = if l == 1 {
-                        first_hodograph_point(
+                        let h = first_hodograph_point(
                             factor,
-                            (self.control_point(i, j), self.weight(i, j)),
-                            (self.control_point(i, j - 1), self.weight(i, j - 1)),
+                            (points[r][s], weights[r][s]),
+                            (points[r][s - 1], weights[r][s - 1]),
                             origin,
-                        )
+                        );
+                        largest[1] = largest[1].max(squared(h));
+                        h
                     } else {
                         hodograph_difference(factor, level[s], level[s - 1])
                     };
-                    if l == 1 {
-                        scales[1] = scales[1].max(norm([level[s][0], level[s][1], level[s][2]]));
-                    }
                 }
                 row[l][r] = contract(&level[l..=q], &nv[q - l][..=q - l]);
             }
@@ -207,21 +228,43 @@ impl Surface {
         }
         if order >= 2 && top_u >= 1 && top_v >= 1 {
             // Q^(1,1): v-differences of the u-hodograph columns, already summed in u.
-            let mut mixed = [[0.0; 4]; CAP];
             for s in (1..=q).rev() {
-                let j = b - q + s;
-                let factor = q as f64 / (kv[j + q] - kv[j]);
-                mixed[s] = hodograph_difference(factor, column[1][s], column[1][s - 1]);
+                level[s] = hodograph_difference(factors_v[1][s], column[1][s], column[1][s - 1]);
             }
-            homogeneous[1][1] = contract(&mixed[1..=q], &nv[q - 1][..q]);
+            homogeneous[1][1] = contract(&level[1..=q], &nv[q - 1][..q]);
         }
         let mut values = rational_partials(&homogeneous, order, self.is_rational());
         values[0][0] = std::array::from_fn(|c| origin[c] + values[0][0][c]);
+        let min_weight = if self.is_rational() {
+            weights[..=p]
+                .iter()
+                .flat_map(|row| row[..=q].iter())
+                .fold(f64::INFINITY, |m, &w| m.min(w))
+        } else {
+            1.0
+        };
         Partials {
             values,
-            scales: scales.map(|s| s / min_weight),
+            scales: largest.map(|s| s.sqrt() / min_weight),
         }
     }
+}
+
+/// `(w (d - O), w)`.
+#[inline(always)]
+fn local(d: Point, w: f64, origin: Point) -> [f64; 4] {
+    [
+        w * (d[0] - origin[0]),
+        w * (d[1] - origin[1]),
+        w * (d[2] - origin[2]),
+        w,
+    ]
+}
+
+/// `|x|² + |y|² + |z|²` of a homogeneous point's first three coordinates.
+#[inline(always)]
+fn squared(h: [f64; 4]) -> f64 {
+    h[0] * h[0] + h[1] * h[1] + h[2] * h[2]
 }
 
 impl Partials {
@@ -243,6 +286,10 @@ fn contract(points: &[[f64; 4]], basis: &[f64]) -> [f64; 4] {
     sum
 }
 
+/// `C(k, i)` for `k <= MAX_PARTIAL_ORDER`.
+const BINOMIALS: [[f64; MAX_PARTIAL_ORDER + 1]; MAX_PARTIAL_ORDER + 1] =
+    [[1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [1.0, 2.0, 1.0]];
+
 /// The partials `S^(k,l)`, `k + l <= order`, of `S = X / W` from the homogeneous ones
 /// `A^(k,l) = (X, W)^(k,l)` (The NURBS Book A4.4); the point relative to the local origin.
 fn rational_partials(
@@ -261,7 +308,7 @@ fn rational_partials(
                         if i == 0 && j == 0 {
                             continue;
                         }
-                        let factor = binomial(k, i) * binomial(l, j) * a[i][j][3];
+                        let factor = BINOMIALS[k][i] * BINOMIALS[l][j] * a[i][j][3];
                         for (c, x) in value.iter_mut().enumerate() {
                             *x -= factor * s[k - i][l - j][c];
                         }
