@@ -9,6 +9,7 @@
 mod basis;
 pub(crate) mod bernstein;
 mod bezier;
+pub(crate) mod box_tree;
 mod closest;
 mod curve;
 mod envelope;
@@ -45,6 +46,7 @@ pub use envelope::{EnvelopeError, KnotRun};
 pub use eval::{BatchEvaluator, EvalError};
 pub(crate) use eval::{first_hodograph_point, hodograph_difference, multiply_add};
 pub use insert::{EDITING_KNOT_SPACING, EDITING_KNOTS_EACH_SIDE, InsertError};
+pub(crate) use other_knots::bezier_of_net;
 pub(crate) use periodic::Periodicity;
 pub use periodic::{PeriodicWindow, WrapError};
 pub use rational_basis::{MAX_BASIS_ORDER, RationalBasis};

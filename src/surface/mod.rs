@@ -8,12 +8,21 @@
 //! net's columns and rows carry every operation in `u` and in `v`, and the numerics (de Boor's
 //! hodographs, blossoms, Bernstein bounds) are the curves' own.
 
+mod bernstein2;
+mod closest;
 mod differential;
 mod eval;
+mod iso;
+mod minimise;
+mod patches;
 #[allow(clippy::module_inception)]
 mod surface;
 mod validate;
 
+pub use closest::{
+    COORDINATE_ROUNDING, MAX_SUBDIVISIONS, SURFACE_CLOSEST_TOLERANCE, SurfaceClosestPoint,
+    SurfaceClosestSearch, SurfaceRangeError,
+};
 pub use differential::{
     Curvature, Inward, NORMAL_DEGENERACY, NormalKind, UMBILIC_TOLERANCE, curvature, unit_normal,
 };

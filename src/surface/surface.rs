@@ -225,6 +225,11 @@ impl Surface {
         self.weights.as_deref()
     }
 
+    /// The homogeneous control points, row by row.
+    pub(crate) fn homogeneous(&self) -> &[[f64; 4]] {
+        &self.homogeneous
+    }
+
     /// The control points as the caller gave them: `caller_count_u` rows of
     /// `caller_count_v` points (a periodic direction's repeated ones left out).
     pub fn caller_control_points(&self) -> Vec<Vec<Point>> {

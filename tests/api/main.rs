@@ -29,4 +29,5 @@ mod regions_constraints;
 mod shape;
 mod shutdown;
 mod surface_errors;
+mod surface_picking;
 mod surfaces;

@@ -9,6 +9,7 @@ mod common;
 #[allow(dead_code)]
 mod curve_exact;
 
+mod closest;
 mod corpus;
 mod evaluation;
 mod exact;

@@ -12,6 +12,7 @@ pub mod from_points;
 pub mod length;
 pub mod reshape;
 // Surfaces (fourth release).
+pub mod surface_closest;
 pub mod surfaces;
 
 use axum::Extension;

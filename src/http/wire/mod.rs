@@ -16,4 +16,5 @@ pub mod length;
 pub mod reshape;
 pub mod toolkit_parse;
 // Surfaces (fourth release).
+pub mod surface_closest;
 pub mod surfaces;
