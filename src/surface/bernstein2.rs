@@ -176,28 +176,63 @@ pub(crate) fn evaluate_2d(
 }
 
 /// The value and first two derivatives at `x ∈ [0, 1]` of the Bernstein polynomial with
-/// `coefficients` (degree `d = len − 1`), by de Casteljau: the points of level `d − 2` give the
-/// second derivative `d (d − 1) Δ²`, those of level `d − 1` the first `d Δ`.
+/// `coefficients` (degree `d = len − 1 <= 31`), in `O(d)`: Horner's scheme in `r = x / (1 − x)`
+/// for `x <= 1/2` (else in `(1 − x) / x` over the reversed coefficients), as the curves'
+/// [`crate::spline::bernstein`] evaluates: `f = (1 − x)^d Σ C(d, k) b_k r^k`,
+/// `f' = d (1 − x)^(d−1) Σ C(d−1, k) Δb_k r^k`, `f'' = d (d − 1) (1 − x)^(d−2) Σ C(d−2, k)
+/// Δ²b_k r^k`. Both ratios stay `<= 1`, so the sums are as well conditioned as de Casteljau's.
 pub(crate) fn with_derivatives(coefficients: &[f64], x: f64) -> [f64; 3] {
     let d = coefficients.len() - 1;
-    let mut work = [0.0; 32];
-    work[..=d].copy_from_slice(coefficients);
-    let y = 1.0 - x;
-    let (mut first, mut second) = (0.0, 0.0);
-    for level in 0..=d {
-        // work[..=d - level] holds the points of this level.
-        let remaining = d - level;
-        if remaining == 2 {
-            second = (d * (d - 1)) as f64 * (work[2] - 2.0 * work[1] + work[0]);
+    if d == 0 {
+        return [coefficients[0], 0.0, 0.0];
+    }
+    let mirrored = x > 0.5;
+    let (ratio, base) = if mirrored {
+        ((1.0 - x) / x, x)
+    } else {
+        (x / (1.0 - x), 1.0 - x)
+    };
+    let at = |k: usize| {
+        if mirrored {
+            coefficients[d - k]
+        } else {
+            coefficients[k]
         }
-        if remaining == 1 {
-            first = d as f64 * (work[1] - work[0]);
-        }
-        for k in 0..remaining {
-            work[k] = y * work[k] + x * work[k + 1];
+    };
+    let mut value = at(d);
+    for k in (0..d).rev() {
+        value = value * ratio + BINOMIAL[d][k] * at(k);
+    }
+    let mut slope = at(d) - at(d - 1);
+    for k in (0..d - 1).rev() {
+        slope = slope * ratio + BINOMIAL[d - 1][k] * (at(k + 1) - at(k));
+    }
+    let mut curvature = 0.0;
+    if d >= 2 {
+        curvature = at(d) - 2.0 * at(d - 1) + at(d - 2);
+        for k in (0..d - 2).rev() {
+            curvature =
+                curvature * ratio + BINOMIAL[d - 2][k] * (at(k + 2) - 2.0 * at(k + 1) + at(k));
         }
     }
-    [work[0], first, second]
+    // base^(d-2), base^(d-1), base^d.
+    let mut power = 1.0;
+    for _ in 2..d {
+        power *= base;
+    }
+    let (to_d_minus_1, to_d) = if d >= 2 {
+        (power * base, power * base * base)
+    } else {
+        (1.0, base)
+    };
+    let d_f = d as f64;
+    let slope = d_f * to_d_minus_1 * slope;
+    let curvature = d_f * (d_f - 1.0) * power * curvature;
+    [
+        value * to_d,
+        if mirrored { -slope } else { slope },
+        curvature,
+    ]
 }
 
 #[cfg(test)]
@@ -241,6 +276,35 @@ mod tests {
         }
         let [ss, tt, st] = second_derivative_bounds(&b, degrees);
         assert!((ss - 2.0).abs() < 1e-13 && (tt - 4.0).abs() < 1e-13 && (st - 1.0).abs() < 1e-13);
+    }
+
+    #[test]
+    fn the_horner_form_matches_de_casteljau_and_its_differences() {
+        let coefficients = [1.5, -2.0, 0.25, 3.0, -1.0, 0.5, 2.0];
+        let casteljau = |b: &[f64], x: f64| {
+            let mut work = b.to_vec();
+            for level in 1..work.len() {
+                for i in 0..work.len() - level {
+                    work[i] += x * (work[i + 1] - work[i]);
+                }
+            }
+            work[0]
+        };
+        let d = 6.0;
+        let slopes: Vec<f64> = coefficients.windows(2).map(|w| d * (w[1] - w[0])).collect();
+        let curvatures: Vec<f64> = slopes
+            .windows(2)
+            .map(|w| (d - 1.0) * (w[1] - w[0]))
+            .collect();
+        for i in 0..=40 {
+            let x = f64::from(i) / 40.0;
+            let [f, f1, f2] = with_derivatives(&coefficients, x);
+            assert!((f - casteljau(&coefficients, x)).abs() < 1e-13, "{x}");
+            assert!((f1 - casteljau(&slopes, x)).abs() < 1e-12, "{x}");
+            assert!((f2 - casteljau(&curvatures, x)).abs() < 1e-11, "{x}");
+        }
+        assert_eq!(with_derivatives(&[2.0, 4.0], 0.25), [2.5, 2.0, 0.0]);
+        assert_eq!(with_derivatives(&[3.0], 0.7), [3.0, 0.0, 0.0]);
     }
 
     #[test]

@@ -43,6 +43,8 @@ pub(super) struct Search<'a, 's> {
     exhausted: bool,
     /// Whether a part was dropped as below the noise of the Bernstein values.
     below_noise: bool,
+    /// Room for a part's `P_μ`, `N` and `D` while it is resolved.
+    scratch: Vec<f64>,
 }
 
 impl<'a, 's> Search<'a, 's> {
@@ -67,6 +69,7 @@ impl<'a, 's> Search<'a, 's> {
             subdivisions: 0,
             exhausted: false,
             below_noise: false,
+            scratch: Vec::new(),
         }
     }
 
@@ -198,8 +201,10 @@ impl<'a, 's> Search<'a, 's> {
         let (p, q) = (surface.u().degree(), surface.v().degree());
         let size = (p + 1) * (q + 1);
         let net = &self.owner.nets[patch * size..(patch + 1) * size];
-        let mut factors = [vec![0.0; size], vec![0.0; size], vec![0.0; size]];
-        let mut weights = vec![0.0; size];
+        // (p + 1)(q + 1) <= 16² points: the degrees are at most MAX_DEGREE.
+        const ROOM: usize = (crate::spline::MAX_DEGREE + 1) * (crate::spline::MAX_DEGREE + 1);
+        let mut factors = [[0.0; ROOM]; 3];
+        let mut weights = [0.0; ROOM];
         for (k, h) in net.iter().enumerate() {
             for c in 0..3 {
                 factors[c][k] = h[c] - self.q[c] * h[3];
@@ -212,9 +217,17 @@ impl<'a, 's> Search<'a, 's> {
         let degrees = Degrees { m: p, n: q };
         {
             let (n, d) = self.arena[start..start + 2 * len].split_at_mut(len);
-            sum_of_squares(&[&factors[0], &factors[1], &factors[2]], degrees, n);
+            sum_of_squares(
+                &[
+                    &factors[0][..size],
+                    &factors[1][..size],
+                    &factors[2][..size],
+                ],
+                degrees,
+                n,
+            );
             if self.rational {
-                sum_of_squares(&[&weights], degrees, d);
+                sum_of_squares(&[&weights[..size]], degrees, d);
             } else {
                 d.iter_mut().for_each(|x| *x = 1.0);
             }
@@ -289,13 +302,17 @@ impl<'a, 's> Search<'a, 's> {
         self.subdivisions += 1;
         let (left_block, right_block) = (self.allocate(), self.allocate());
         let len = self.degrees.len();
+        let mut scratch = std::mem::take(&mut self.scratch);
+        scratch.resize(3 * len, 0.0);
         for offset in [0, len] {
-            let source = self.arena[2 * len * part.block + offset..][..len].to_vec();
-            let (mut left, mut right) = (vec![0.0; len], vec![0.0; len]);
-            halve_2d(&source, self.degrees, in_s, &mut left, &mut right);
-            self.arena[2 * len * left_block + offset..][..len].copy_from_slice(&left);
-            self.arena[2 * len * right_block + offset..][..len].copy_from_slice(&right);
+            let (source, halves) = scratch.split_at_mut(len);
+            let (left, right) = halves.split_at_mut(len);
+            source.copy_from_slice(&self.arena[2 * len * part.block + offset..][..len]);
+            halve_2d(source, self.degrees, in_s, left, right);
+            self.arena[2 * len * left_block + offset..][..len].copy_from_slice(left);
+            self.arena[2 * len * right_block + offset..][..len].copy_from_slice(right);
         }
+        self.scratch = scratch;
         self.free.push(part.block);
         let (mut left, mut right) = (part, part);
         left.block = left_block;
@@ -337,37 +354,54 @@ impl<'a, 's> Search<'a, 's> {
     /// steps on `μ` (module docs); the minima found are offered.
     fn resolves(&mut self, part: &Part) -> bool {
         let len = self.degrees.len();
-        let (n, d) = {
-            let (n, d) = self.block(part.block);
-            (n.to_vec(), d.to_vec())
-        };
+        let start = 2 * len * part.block;
+        let mut scratch = std::mem::take(&mut self.scratch);
+        scratch.resize(3 * len, 0.0);
+        let (polynomial, rest) = scratch.split_at_mut(len);
+        let (n, d) = rest.split_at_mut(len);
+        n.copy_from_slice(&self.arena[start..start + len]);
+        d.copy_from_slice(&self.arena[start + len..start + 2 * len]);
+        let resolved = self.resolves_with(part, polynomial, n, d);
+        self.scratch = scratch;
+        resolved
+    }
+
+    /// [`Search::resolves`] with the part's `N`, `D` and room for `P_μ`.
+    fn resolves_with(&mut self, part: &Part, polynomial: &mut [f64], n: &[f64], d: &[f64]) -> bool {
         let largest_weight = d.iter().copied().fold(0.0, f64::max);
+        let noise_at = |best: f64, size: f64| {
+            let scale = size + best.max(0.0).sqrt();
+            SQUARED_NOISE * scale * scale * largest_weight
+        };
+        if !self.rational {
+            // D = 1: P_μ = N − μ has the minimum of N wherever μ is; one certificate of N's.
+            let Some(minimum) = certified_minimum(n, self.degrees) else {
+                self.offer_descent(part, n);
+                return false;
+            };
+            let x = (minimum.point[0], minimum.point[1]);
+            let at = self.parameters(part, x);
+            self.offer(at, minimum.value, part.patch);
+            return minimum.bound - self.best >= -noise_at(self.best, self.owner.size);
+        }
         let mut mu = if self.best.is_finite() {
             self.best
         } else {
             self.value_at(part.block, (0.5, 0.5))
         };
-        let mut polynomial = vec![0.0; len];
         for _ in 0..MAX_RATIO_STEPS {
-            for k in 0..len {
-                polynomial[k] = n[k] - mu * d[k];
+            for ((p, &a), &b) in polynomial.iter_mut().zip(n).zip(d) {
+                *p = a - mu * b;
             }
-            let Some(minimum) = certified_minimum(&polynomial, self.degrees) else {
-                // No certificate: offer where a descent from the least coefficient leads,
-                // so that the best distance (and what it prunes) improves, and halve.
-                let (x, _, _) = descend(&polynomial, self.degrees);
-                let ratio = self.value_at(part.block, (x[0], x[1]));
-                let at = self.parameters(part, (x[0], x[1]));
-                self.offer(at, ratio, part.patch);
+            let Some(minimum) = certified_minimum(polynomial, self.degrees) else {
+                self.offer_descent(part, polynomial);
                 return false;
             };
             let x = (minimum.point[0], minimum.point[1]);
             let ratio = self.value_at(part.block, x);
             let at = self.parameters(part, x);
             self.offer(at, ratio, part.patch);
-            let scale = self.owner.size + mu.max(0.0).sqrt();
-            let noise = SQUARED_NOISE * scale * scale * largest_weight;
-            if minimum.bound >= -noise {
+            if minimum.bound >= -noise_at(mu, self.owner.size) {
                 return true;
             }
             if ratio < mu {
@@ -379,10 +413,29 @@ impl<'a, 's> Search<'a, 's> {
         false
     }
 
+    /// With no certificate: offers where a descent on `polynomial` from its least coefficient
+    /// leads, so that the best distance (and what it prunes) improves.
+    fn offer_descent(&mut self, part: &Part, polynomial: &[f64]) {
+        let (x, _, _) = descend(polynomial, self.degrees);
+        let ratio = self.value_at(part.block, (x[0], x[1]));
+        let at = self.parameters(part, (x[0], x[1]));
+        self.offer(at, ratio, part.patch);
+    }
+
     /// The answer (module docs of the parent): candidates measured with the surface
     /// evaluator and polished, the smallest `(u, v)` among those within the tolerance of the
     /// least distance.
     pub(super) fn finish(self) -> SurfaceClosestPoint {
+        if std::env::var_os("SURFACE_STATS").is_some() {
+            eprintln!(
+                "STATS parts {} subdivisions {} candidates {} below_noise {} exhausted {}",
+                self.parts.len(),
+                self.subdivisions,
+                self.candidates.len(),
+                self.below_noise,
+                self.exhausted
+            );
+        }
         let surface = self.owner.surface;
         let limit = self.best + self.slack;
         let measure = |u: f64, v: f64, patch: usize| {
