@@ -40,7 +40,7 @@ use utoipa_axum::routes;
 use crate::config::Config;
 use error::{FieldError, PROBLEM_JSON, Problem};
 use routes::{closest, curves, editor, files, ops, shape, toolkit};
-use routes::{from_points, length, reshape, surface_closest, surfaces};
+use routes::{from_points, length, reshape, surface_closest, surface_toolkit, surfaces};
 pub use server::{Server, shutdown_signal};
 pub use state::{AppState, Readiness};
 
@@ -121,6 +121,9 @@ fn v1_routes() -> OpenApiRouter<AppState> {
         // Surfaces (fourth release).
         .routes(routes!(surfaces::evaluate))
         .routes(routes!(surface_closest::closest_point))
+        .routes(routes!(surface_toolkit::iso_curve))
+        .routes(routes!(surface_toolkit::insert_knots))
+        .routes(routes!(surface_toolkit::split))
 }
 
 /// Probe, metrics and document routes (always open).
@@ -295,6 +298,6 @@ mod tests {
     fn the_document_names_every_route() {
         let document = openapi();
         let paths: Vec<&String> = document.paths.paths.keys().collect();
-        assert_eq!(paths.len(), 14 + 6 + 2, "{paths:?}");
+        assert_eq!(paths.len(), 14 + 6 + 5, "{paths:?}");
     }
 }

@@ -15,6 +15,7 @@ mod eval;
 mod iso;
 mod minimise;
 mod patches;
+mod refine;
 #[allow(clippy::module_inception)]
 mod surface;
 mod validate;
@@ -27,5 +28,6 @@ pub use differential::{
     Curvature, Inward, NORMAL_DEGENERACY, NormalKind, UMBILIC_TOLERANCE, curvature, unit_normal,
 };
 pub use eval::{MAX_PARTIAL_ORDER, Partials};
+pub use refine::{SurfaceInsertError, SurfaceSplitError};
 pub use surface::{Axis, Direction, Surface};
 pub use validate::{SurfaceError, SurfaceField, SurfaceLimits};

@@ -64,6 +64,16 @@ impl Axis {
         }
     }
 
+    /// The axis of a curve (its degree, knots, convention and periodic layout).
+    pub(crate) fn of_curve(curve: &Curve) -> Axis {
+        Axis {
+            degree: curve.degree(),
+            knots: curve.knots().to_vec(),
+            convention: curve.convention(),
+            periodic: curve.periodicity(),
+        }
+    }
+
     /// The degree.
     pub fn degree(&self) -> usize {
         self.degree
@@ -171,6 +181,27 @@ impl Surface {
             weights,
             homogeneous,
         }
+    }
+
+    /// A surface from homogeneous control points (projected; weights kept when `rational`).
+    pub(crate) fn from_homogeneous(
+        u: Axis,
+        v: Axis,
+        homogeneous: &[[f64; 4]],
+        rational: bool,
+    ) -> Surface {
+        let points = homogeneous
+            .iter()
+            .map(|h| {
+                if rational {
+                    [h[0] / h[3], h[1] / h[3], h[2] / h[3]]
+                } else {
+                    [h[0], h[1], h[2]]
+                }
+            })
+            .collect();
+        let weights = rational.then(|| homogeneous.iter().map(|h| h[3]).collect());
+        Surface::from_valid_parts(u, v, points, weights)
     }
 
     /// The direction `direction`.
@@ -286,6 +317,32 @@ impl Surface {
             .is_rational()
             .then(|| (0..self.v.count()).map(|j| self.weight(i, j)).collect());
         curve_of(&self.v, points, weights)
+    }
+
+    /// The surface whose columns are `columns` (curves along `u` sharing their knots, as
+    /// [`Surface::column`] gives them, e.g. after the same knot insertion) with this surface's
+    /// `v` direction. Precondition: at least one column, all of one layout.
+    pub(crate) fn with_columns(&self, columns: &[Curve]) -> Surface {
+        let u = Axis::of_curve(&columns[0]);
+        let (n_u, n_v) = (u.count(), columns.len());
+        let mut homogeneous = vec![[0.0; 4]; n_u * n_v];
+        for (j, column) in columns.iter().enumerate() {
+            for (i, h) in column.homogeneous().iter().enumerate() {
+                homogeneous[i * n_v + j] = *h;
+            }
+        }
+        Surface::from_homogeneous(u, self.v.clone(), &homogeneous, self.is_rational())
+    }
+
+    /// The surface whose rows are `rows` (curves along `v`) with this surface's `u` direction
+    /// (see [`Surface::with_columns`]).
+    pub(crate) fn with_rows(&self, rows: &[Curve]) -> Surface {
+        let v = Axis::of_curve(&rows[0]);
+        let homogeneous: Vec<[f64; 4]> = rows
+            .iter()
+            .flat_map(|row| row.homogeneous().iter().copied())
+            .collect();
+        Surface::from_homogeneous(self.u.clone(), v, &homogeneous, self.is_rational())
     }
 
     /// The diagonal of the control points' bounding box.

@@ -30,4 +30,5 @@ mod shape;
 mod shutdown;
 mod surface_errors;
 mod surface_picking;
+mod surface_toolkit;
 mod surfaces;

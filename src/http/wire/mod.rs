@@ -17,4 +17,5 @@ pub mod reshape;
 pub mod toolkit_parse;
 // Surfaces (fourth release).
 pub mod surface_closest;
+pub mod surface_toolkit;
 pub mod surfaces;
