@@ -40,7 +40,8 @@ use utoipa_axum::routes;
 use crate::config::Config;
 use error::{FieldError, PROBLEM_JSON, Problem};
 use routes::{closest, curves, editor, files, ops, shape, toolkit};
-use routes::{from_points, length, reshape, surface_closest, surface_toolkit, surfaces};
+use routes::{from_points, length, reshape};
+use routes::{surface_closest, surface_mesh, surface_toolkit, surfaces};
 pub use server::{Server, shutdown_signal};
 pub use state::{AppState, Readiness};
 
@@ -124,6 +125,7 @@ fn v1_routes() -> OpenApiRouter<AppState> {
         .routes(routes!(surface_toolkit::iso_curve))
         .routes(routes!(surface_toolkit::insert_knots))
         .routes(routes!(surface_toolkit::split))
+        .routes(routes!(surface_mesh::tessellate))
 }
 
 /// Probe, metrics and document routes (always open).
@@ -298,6 +300,6 @@ mod tests {
     fn the_document_names_every_route() {
         let document = openapi();
         let paths: Vec<&String> = document.paths.paths.keys().collect();
-        assert_eq!(paths.len(), 14 + 6 + 5, "{paths:?}");
+        assert_eq!(paths.len(), 14 + 6 + 6, "{paths:?}");
     }
 }

@@ -91,6 +91,7 @@ const POSITIVE: &[(&str, &str, usize)] = &[
     ("EditableAt", "spacing", 0),
     ("ApproximateRequest", "tolerance", 0),
     ("SurfaceBody", "weights", 2),
+    ("TessellateRequest", "tolerance", 0),
 ];
 
 /// Writes the rules into `document` (an OpenAPI 3.1 document as JSON).

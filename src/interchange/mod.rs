@@ -1,4 +1,5 @@
-//! Curve files: STEP (ISO 10303-21) and DXF text in, core curves out, and the reverse. Pure:
+//! Curve (and surface) files: STEP (ISO 10303-21) and DXF text in, core curves out, and the
+//! reverse; meshes out as binary glTF. Pure:
 //! no HTTP types; every loop over the file's content is bounded by [`FileLimits`].
 //!
 //! Untrusted input: the text's size is checked before anything is read, the number of entities
@@ -7,6 +8,7 @@
 //! anywhere is an error as a whole: no partial answer.
 
 pub mod dxf;
+pub mod gltf;
 mod numbers;
 pub mod step;
 

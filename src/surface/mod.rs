@@ -9,6 +9,7 @@
 //! hodographs, blossoms, Bernstein bounds) are the curves' own.
 
 mod bernstein2;
+mod cells;
 mod closest;
 mod differential;
 mod eval;
@@ -18,6 +19,7 @@ mod patches;
 mod refine;
 #[allow(clippy::module_inception)]
 mod surface;
+mod tessellate;
 mod validate;
 
 pub use closest::{
@@ -30,4 +32,5 @@ pub use differential::{
 pub use eval::{MAX_PARTIAL_ORDER, Partials};
 pub use refine::{SurfaceInsertError, SurfaceSplitError};
 pub use surface::{Axis, Direction, Surface};
+pub use tessellate::{Mesh, TessellationError};
 pub use validate::{SurfaceError, SurfaceField, SurfaceLimits};

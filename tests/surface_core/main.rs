@@ -14,6 +14,7 @@ mod corpus;
 mod evaluation;
 mod exact;
 mod generators;
+mod tessellation;
 mod toolkit;
 
 use proptest::test_runner::Config;
