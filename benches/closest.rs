@@ -1,5 +1,5 @@
 //! Closest point per query (`ClosestPointSearch`): 2,000 random queries on a 2D cubic with 60
-//! control points (the size of the peer comparison in the README), and how the cost grows from
+//! control points (the size of docs/performance.md's comparison), and how the cost grows from
 //! 10 to 10,000 control points. Before timing, every answer on the 60-pole curve is checked
 //! against brute force (200,001 samples plus golden-section refinement), and the number of
 //! answers worse than brute force is printed: it must be 0. Then the 60-pole curve, the same

@@ -3,7 +3,9 @@ scripts/interop-roundtrip, which installs Open CASCADE (cadquery-ocp-novtk) and 
 starts the service; usage: interop_roundtrip.py BASE_URL DATA_DIR).
 
 1. Curves we export (POST /v1/curves/export), read back by Open CASCADE's STEPControl_Reader
-   and by ezdxf, compared with our evaluation (POST /v1/curves/evaluate).
+   and by ezdxf, compared with our evaluation (POST /v1/curves/evaluate); the DXF also through
+   ezdxf's construction_tool(), which rounds the knots to the file's knot tolerance (group 42):
+   the knots must come through as written.
 2. Files Open CASCADE (STEPControl_Writer) and ezdxf write, imported by us
    (POST /v1/curves/import), compared with their evaluation.
 3. The real STEP files of DATA_DIR, imported by us and read by Open CASCADE, entity by entity.
@@ -23,6 +25,7 @@ import urllib.request
 
 import ezdxf
 from ezdxf.math import BSpline, closed_uniform_bspline
+from ezdxf.math.bspline import round_knots
 from OCP.BRep import BRep_Tool
 from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge
 from OCP.BRep import BRep_Builder
@@ -232,6 +235,20 @@ def ezdxf_own_points(spline, parameters):
         return None
 
 
+def construction_tool_points(spline, parameters):
+    """The points by ezdxf's construction tool (Spline.construction_tool(): the knots rounded to
+    the decimals of the knot tolerance, group 42), which maps a knot vector that does not start
+    at 0 onto [0, 1] (None where it fails)."""
+    tool = spline.construction_tool()
+    knots = round_knots(list(spline.knots), spline.dxf.knot_tolerance)
+    first, last = knots[0], knots[-1]
+    scale = 1.0 if first == 0.0 else last - first
+    try:
+        return [list(tool.point((t - first) / scale)) for t in parameters]
+    except ZeroDivisionError:
+        return None
+
+
 def export_to_ezdxf(curves):
     text, content_type = post("/v1/curves/export", {"format": "dxf", "curves": curves})
     assert content_type.startswith("image/vnd.dxf"), content_type
@@ -242,7 +259,7 @@ def export_to_ezdxf(curves):
     assert not auditor.has_errors, auditor.errors
     splines = document.modelspace().query("SPLINE")
     assert len(splines) == len(curves)
-    differences, own, failed = [], [], 0
+    differences, own, failed, tool, kept, tolerances = [], [], 0, [], 0, []
     for curve, spline in zip(curves, splines):
         lo, hi = domain(curve)
         parameters = domain_parameters(lo, hi)
@@ -253,8 +270,20 @@ def export_to_ezdxf(curves):
             failed += 1
         else:
             own.append(difference(ours, theirs, scale))
+        tolerances.append(spline.dxf.knot_tolerance)
+        kept += round_knots(list(spline.knots), spline.dxf.knot_tolerance) == list(spline.knots)
+        through_tool = construction_tool_points(spline, parameters)
+        # A curve the construction tool cannot evaluate counts as infinitely far.
+        tool.append(math.inf if through_tool is None else difference(ours, through_tool, scale))
     report("DXF export read by ezdxf (its data by de Boor)", differences)
     print(f"  (ezdxf's own evaluation: {len(own)} curves, max {max(own):.2e}; it failed on {failed})")
+    report("DXF export through ezdxf's construction_tool() (knots rounded to group 42)", tool)
+    finite = [d for d in tool if d != math.inf]
+    print(f"  knot vectors kept as written: {kept} of {len(splines)} (knot tolerances "
+          f"{min(tolerances):.0e} to {max(tolerances):.0e}); evaluated {len(finite)} curves, "
+          f"max {max(finite, default=0.0):.2e}, failed on {len(tool) - len(finite)}")
+    if kept != len(splines):
+        failures.append("DXF knots rounded by their knot tolerance")
 
 
 def occt_curve(curve):

@@ -2,7 +2,6 @@
 #![cfg_attr(test, allow(clippy::unwrap_used))]
 
 pub mod config;
-pub mod fuzzing;
 pub mod http;
 pub mod interchange;
 pub mod shape;

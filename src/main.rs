@@ -12,7 +12,7 @@ use knotshape::http::{Server, shutdown_signal};
 use knotshape::telemetry;
 
 /// mimalloc instead of glibc's malloc, whose `malloc`/`free` cost the server about 2 µs more per
-/// solve request than per health check under load (`perf`; README, Performance).
+/// solve request than per health check under load (`perf`; docs/performance.md, history, round 4).
 #[global_allocator]
 static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
 

@@ -14,6 +14,7 @@ mod editor {
     pub mod browser;
     pub mod curve_tools;
     pub mod drag;
+    pub mod families;
     pub mod gestures;
     pub mod layout;
     pub mod page;

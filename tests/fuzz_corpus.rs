@@ -1,11 +1,11 @@
 //! Replays the committed fuzz corpus (`fuzz/corpus/post_bodies/`, seeds and the fuzzer's
-//! findings) through the fuzz target's own check (`knotshape::fuzzing`), on stable, so that
+//! findings) through the fuzz target's own check (`knotshape_fuzzing`), on stable, so that
 //! every finding fixed stays fixed.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use std::path::Path;
 
-use knotshape::fuzzing::Target;
+use knotshape_fuzzing::Target;
 
 #[tokio::test]
 async fn the_post_body_corpus_passes_the_fuzz_check() {
@@ -27,12 +27,12 @@ async fn the_post_body_corpus_passes_the_fuzz_check() {
     assert!(findings.is_empty(), "{}", findings.join("\n"));
 }
 
-/// The structured check (`knotshape::fuzzing::structured`) on the committed corpus and on
+/// The structured check (`knotshape_fuzzing::structured`) on the committed corpus and on
 /// 3,000 pseudo-random byte strings, on stable: random valid curves through every core
 /// operation, each answer checked another way.
 #[test]
 fn structured_cases_pass_the_fuzz_check() {
-    use knotshape::fuzzing::structured::{Case, check};
+    use knotshape_fuzzing::structured::{Case, check};
     let directory = Path::new(env!("CARGO_MANIFEST_DIR")).join("fuzz/corpus/structured");
     let mut inputs: Vec<(String, Vec<u8>)> = std::fs::read_dir(&directory)
         .map(|entries| {
@@ -72,12 +72,12 @@ fn structured_cases_pass_the_fuzz_check() {
     assert!(findings.is_empty(), "{}", findings.join("\n"));
 }
 
-/// The file readers' check (`knotshape::fuzzing::files`) on the committed corpora of the
+/// The file readers' check (`knotshape_fuzzing::files`) on the committed corpora of the
 /// `step_import` and `dxf_import` targets (seeds and the fuzzers' inputs), and on the real STEP
 /// files of tests/data/interop: no panic, and what is read writes and reads back unchanged.
 #[test]
 fn file_corpora_pass_the_fuzz_check() {
-    use knotshape::fuzzing::files::{check_dxf, check_step};
+    use knotshape_fuzzing::files::{check_dxf, check_step};
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     type Check = fn(&[u8]) -> Result<(), String>;
     let targets: [(&str, Check, usize); 2] =
@@ -104,4 +104,62 @@ fn file_corpora_pass_the_fuzz_check() {
             }
         }
     }
+}
+
+/// The names of the dependencies in the section `[header]` of a Cargo manifest: the keys of
+/// the lines up to the next section (a plain reading; the manifest is this repository's).
+fn section_keys(manifest: &str, header: &str) -> Vec<String> {
+    manifest
+        .lines()
+        .map(str::trim)
+        .skip_while(|line| *line != header)
+        .skip(1)
+        .take_while(|line| !line.starts_with('['))
+        .filter(|line| !line.is_empty() && !line.starts_with('#'))
+        .filter_map(|line| line.split('=').next())
+        .map(|key| key.trim().to_owned())
+        .collect()
+}
+
+/// The harness lives outside the product: knotshape's normal dependencies hold neither
+/// `arbitrary` nor the fuzzing crate (only its dev-dependencies hold the latter), and no
+/// source file of the library or the binary declares a fuzzing module or uses `arbitrary`.
+#[test]
+fn the_service_carries_no_fuzz_harness() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let manifest = std::fs::read_to_string(root.join("Cargo.toml")).unwrap();
+    let normal = section_keys(&manifest, "[dependencies]");
+    assert!(normal.iter().any(|name| name == "axum"), "{normal:?}");
+    for harness in ["arbitrary", "libfuzzer-sys", "knotshape-fuzzing"] {
+        assert!(
+            !normal.iter().any(|name| name == harness),
+            "{harness} is a dependency of the service"
+        );
+    }
+    let dev = section_keys(&manifest, "[dev-dependencies]");
+    assert!(
+        dev.iter().any(|name| name == "knotshape-fuzzing"),
+        "{dev:?}"
+    );
+    let mut pending = vec![root.join("src")];
+    let mut sources = 0;
+    while let Some(dir) = pending.pop() {
+        for entry in std::fs::read_dir(dir).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_dir() {
+                pending.push(path);
+            } else if path.extension().is_some_and(|e| e == "rs") {
+                sources += 1;
+                let text = std::fs::read_to_string(&path).unwrap();
+                for line in text.lines().map(str::trim) {
+                    assert!(
+                        !(line.contains("mod fuzzing") || line.contains("arbitrary::")),
+                        "{}: {line}",
+                        path.display()
+                    );
+                }
+            }
+        }
+    }
+    assert!(sources > 50, "only {sources} source files");
 }

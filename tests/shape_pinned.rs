@@ -67,6 +67,7 @@ fn query(curve: &Curve, t: f64, keep_domain: bool) -> ShapeQuery<'_> {
         parameter: t,
         side: SideChoice::Both,
         pairs: &KnotPair::ALL,
+        families: Default::default(),
         keep_domain,
     }
 }

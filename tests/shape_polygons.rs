@@ -241,6 +241,7 @@ fn check_region(
             Side::Left => SideChoice::Left,
         },
         pairs: &pairs,
+        families: Default::default(),
         keep_domain: false,
     };
     for k in 0..POINTS_PER_REGION {
@@ -317,6 +318,7 @@ fn polygons_are_closed_accurate_and_agree_with_membership() {
             parameter: t,
             side: SideChoice::Both,
             pairs: &KnotPair::ALL,
+            families: Default::default(),
             keep_domain: false,
         };
         let context = format!("case {case} (seed {seed:#x}) t = {t:?} curve = {curve:?}");

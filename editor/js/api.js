@@ -12,6 +12,8 @@ const ATTEMPTS = 4;
 const LONGEST_WAIT_SECONDS = 5;
 /** The problem `type` of a request that never got an answer. */
 export const NETWORK_ERROR = "about:network-error";
+/** The problem `type` of a request the page gave up waiting for (its `budget`). */
+export const OVER_BUDGET = "about:over-budget";
 
 let connectionListener = () => {};
 
@@ -53,8 +55,9 @@ function retryAfter(response) {
 }
 
 /** POSTs `body` as JSON; the answer is parsed as JSON, or kept as text with `text` (a file
- * export). */
-async function post(path, body, { text: asText = false } = {}) {
+ * export). With `budget` (milliseconds) the page stops waiting after that long: the request
+ * is aborted and answered with an OVER_BUDGET problem (not a connection failure). */
+async function post(path, body, { text: asText = false, budget = 0 } = {}) {
   const headers = { "Content-Type": "application/json", Accept: asText ? "*/*" : "application/json" };
   const key = apiKey();
   if (key) {
@@ -63,12 +66,18 @@ async function post(path, body, { text: asText = false } = {}) {
   const text = JSON.stringify(body);
   for (let attempt = 1; ; attempt += 1) {
     let response;
+    const abort = budget > 0 ? new AbortController() : null;
+    const timer = abort ? setTimeout(() => abort.abort(), budget) : null;
     try {
-      response = await fetch(path, { method: "POST", headers, body: text });
+      response = await fetch(path, { method: "POST", headers, body: text, signal: abort?.signal });
     } catch (error) {
+      if (abort?.signal.aborted) {
+        return failure({ type: OVER_BUDGET, title: `no answer within ${budget / 1000} s`, detail: path });
+      }
       connectionListener({ state: "unreachable", path });
       return failure({ type: NETWORK_ERROR, title: "The service does not answer", detail: `${path}: ${error.message}` });
     }
+    if (timer) clearTimeout(timer);
     const wait = retryAfter(response);
     if (wait !== null && attempt < ATTEMPTS) {
       connectionListener({ state: "retrying", seconds: wait, path });
@@ -170,28 +179,34 @@ function withConditions(body, { constraints = [], fixed = [] } = {}) {
   return body;
 }
 
-/** POST /v1/shape/regions: the reachable sets at `parameter` of the knot pairs (both sides)
- * and the weight pairs, for the same `keep_domain`, `methods` and conditions as solving (so
- * that every drawn region holds only targets solve reaches), within `tolerance` of the true
- * boundaries. */
-export function regions(curve, parameter, tolerance, { methods, constraints = [], fixed = [] }) {
+/** POST /v1/shape/regions: the reachable sets at `parameter` of the knot pairs of every
+ * family that applies, or of `knotFamilies` (`families`; the envelope's on both sides) and
+ * of the weight pairs,
+ * for the same `keep_domain`, `methods` and conditions as solving (so that every drawn
+ * region holds only targets solve reaches), within `tolerance` of the true boundaries. */
+export function regions(curve, parameter, tolerance, { methods, knotFamilies = null, constraints = [], fixed = [], budget = 0 }) {
   const body = { curve, parameter, side: "both", keep_domain: true, methods, tolerance };
-  return post("/v1/shape/regions", withConditions(body, { constraints, fixed }));
+  if (knotFamilies) body.knot_families = knotFamilies;
+  return post("/v1/shape/regions", withConditions(body, { constraints, fixed }), { budget });
 }
 
 /**
  * POST /v1/shape/solve with `nearest`. `family` (optional) narrows the request to one way of
- * moving the point — `{ method, side, region }` — so the answer holds just that family's
- * solution; `svgPaths` asks for each solution's new curve as an SVG path (so a drag's
- * preview needs no second request); `conditions` ({ constraints, fixed }) are sent as they are.
+ * moving the point — `{ method, family?, side?, region? }` (geometry.familyOf) — as far as
+ * the API can: the method, for knots the knot family (`knot_families`), the envelope's side,
+ * and a cubic's envelope pair (`regions`, which names only Ω1–Ω6); the caller picks the
+ * family's solution out of the answer. `svgPaths` asks for each solution's new curve as an
+ * SVG path (so a drag's preview needs no second request); `conditions` ({ constraints,
+ * fixed }) are sent as they are.
  */
 export function solve(curve, parameter, target, { methods, family = null, svgPaths = false, conditions = {} }) {
   const body = withConditions({ curve, parameter, target, side: "both", keep_domain: true, nearest: true, methods }, conditions);
   if (family) {
     body.methods = [family.method];
     if (family.method === "knots") {
-      body.side = family.side;
-      body.regions = [family.region];
+      body.knot_families = [family.family];
+      if (family.side) body.side = family.side;
+      if (/^omega[1-6]$/.test(family.region)) body.regions = [family.region];
     }
   }
   if (svgPaths) body.svg_paths = true;

@@ -15,25 +15,63 @@ import { fit, needsFit } from "./viewport.js";
  * boundary. */
 const REGION_PIXELS = 0.5;
 
+/** The direct pairs' regions are asked within this fraction of the control polygon's size
+ * at least (about a pixel and a half on the fitted sample): the service's outline of a
+ * folded direct pair can take seconds at finer tolerances (the sample cubic's at t = 0.42:
+ * 0.2 s at 1/1000, 3 s at 1/5000, over its 10 s limit at 1/10000), so zoomed in they are
+ * drawn within this instead of half a pixel. */
+const DIRECT_REGION_FRACTION = 2e-3;
+
+/** Milliseconds the page waits for the direct pairs' regions before it shows the pick
+ * without them (the legend says so). */
+const DIRECT_REGION_BUDGET = 2500;
+
 /** Teeth of the curvature comb: TEETH_PER_SPAN per knot span, within these bounds. */
 const FEWEST_TEETH = 200;
 const MOST_TEETH = 2000;
 const TEETH_PER_SPAN = 8;
 
-/** The methods whose reachable sets the page draws for `curve` in `state`: the ticked knot
- * pairs and weights that can edit it, on a planar curve. */
+/** The methods whose reachable sets the page asks for on `curve` in `state`: the ticked
+ * knots and weights that can edit it; on a 3D curve only the knots (whose families the
+ * legend explains; their regions are drawn where they lie in the view's plane:
+ * geometry.familyEntries). */
 export function regionMethods(curve, state) {
-  if (geometry.dimension(curve) !== 2) return [];
-  return geometry.usableMethods(curve, state.methods).filter((method) => method === "knots" || method === "weights");
+  const methods = geometry.usableMethods(curve, state.methods).filter((method) => method === "knots" || method === "weights");
+  return geometry.dimension(curve) === 2 ? methods : methods.filter((method) => method === "knots");
 }
 
 /** The regions answer at `parameter` of `curve` for the methods and conditions of `state`
  * (under constraints only the pairs whose edits surely keep them), drawn within
- * REGION_PIXELS at its frame; null when no region is drawn. */
-export function regionsAt(curve, parameter, state) {
+ * REGION_PIXELS at its frame, the direct pairs' within DIRECT_REGION_FRACTION of the curve's
+ * size at least (a request of their own, merged into the answer's `families`; each family
+ * entry gets the `tolerance` it was drawn within); null when no region is drawn. When only
+ * the direct pairs' request fails, the legend says so and the rest is drawn. */
+export async function regionsAt(curve, parameter, state) {
   const methods = regionMethods(curve, state);
-  if (methods.length === 0) return Promise.resolve(null);
-  return api.regions(curve, parameter, REGION_PIXELS / state.view.frame.scale, { methods, ...model.conditions(state) });
+  if (methods.length === 0) return null;
+  const conditions = model.conditions(state);
+  const tolerance = REGION_PIXELS / state.view.frame.scale;
+  const [low, high] = geometry.extent(curve);
+  const directTolerance = Math.max(tolerance, DIRECT_REGION_FRACTION * Math.max(high[0] - low[0], high[1] - low[1]));
+  const knots = methods.includes("knots");
+  const families = knots ? geometry.knotFamiliesOf(curve) : [];
+  const others = families.filter((family) => family !== "direct");
+  const mainMethods = others.length > 0 ? methods : methods.filter((method) => method !== "knots");
+  const [main, direct] = await Promise.all([
+    mainMethods.length > 0 ? api.regions(curve, parameter, tolerance, { methods: mainMethods, knotFamilies: others.length > 0 ? others : null, ...conditions }) : null,
+    families.includes("direct") ? api.regions(curve, parameter, directTolerance, { methods: ["knots"], knotFamilies: ["direct"], ...conditions, budget: DIRECT_REGION_BUDGET }) : null,
+  ]);
+  if (main && !main.ok) return main;
+  const value = main ? { ...main.value } : { candidates: [], families: [], weight_regions: [] };
+  value.families = (value.families ?? []).map((entry) => ({ ...entry, tolerance }));
+  if (direct?.ok) {
+    value.families.push(...direct.value.families.map((entry) => ({ ...entry, tolerance: directTolerance })));
+  } else if (direct) {
+    if (!main && direct.problem.type !== api.OVER_BUDGET) return direct;
+    const reason = `not drawn: ${direct.problem.type === api.OVER_BUDGET ? direct.problem.title : direct.problem.title.toLowerCase()}`;
+    value.families.push({ family: "direct", applicable: false, reason, span: 0, control_points: [], regions: [], tolerance: directTolerance });
+  }
+  return { ok: true, value };
 }
 
 /** The marks of `state`'s constraints on `curve` ({ point, tangent } each, same order) and
@@ -168,7 +206,7 @@ export function loadCurve(curve, message, source = null) {
       store.set({ ...state, message: "", error: failureMessage(result.problem, "Cannot load this curve: ", source) });
       return false;
     }
-    const refusal = geometry.knotsRefusal(curve);
+    const refusal = geometry.methodsNote(curve);
     store.set({
       ...model.load(state, curve),
       drawing: result.drawing,
@@ -194,7 +232,7 @@ export function refresh(message = "") {
       store.set({ ...now, message: "", error: failureMessage(result.problem) });
       return false;
     }
-    const refusal = geometry.knotsRefusal(model.currentCurve(now));
+    const refusal = geometry.methodsNote(model.currentCurve(now));
     store.set({ ...now, drawing: result.drawing, regions: result.regions, message: message || (refusal ?? ""), error: result.regionsProblem ? describeProblem(result.regionsProblem) : "" });
     return true;
   });

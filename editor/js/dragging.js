@@ -4,18 +4,22 @@
 // pending target, so the newest target is solved next. It sends the local piece of the
 // curve that the move can change (geometry.pieceAtParameter / pieceAtPole), so that a
 // request costs the same on a 300-pole curve as on the sample, and draws that piece as the
-// preview. A point drag keeps the family (method, side, region) of its first answer's
-// default choice — later requests ask for that family only — unless the user switches with
-// the keys 1–9. On release it commits the family's solution for the whole curve; when the
-// last request failed, nothing is committed. Esc cancels.
+// preview (from the answer's SVG path, or computed in the page where SVG cannot draw the
+// curve: drawing.sampledCurve). A point drag keeps the family (method, knot family, side,
+// region) of its first answer's default choice — later requests ask for that family only —
+// unless the user switches with the keys 1–9; where a knot pair has several solutions (its
+// map folds), the one nearest the last preview's knots. On release it commits the family's
+// solution for the whole curve; when the last request failed, nothing is committed. Esc
+// cancels.
 
 import * as api from "./api.js";
 import * as geometry from "./geometry.js";
 import * as model from "./state.js";
 import * as store from "./store.js";
 import { commitCurve, failureMessage } from "./committing.js";
-import { drawingOf } from "./drawing.js";
+import { drawingOf, sampledCurve } from "./drawing.js";
 import { snap } from "./snapping.js";
+import { visibleBox } from "./viewport.js";
 
 /** Drag timings kept, newest last (see `record`); each drag starts a new list. */
 const KEPT_TIMINGS = 2000;
@@ -29,8 +33,9 @@ const KEPT_TIMINGS = 2000;
  */
 export const timings = [];
 
-/** Pointer moves the last drag received (for tests: every move reaches the page). */
-export const moves = { count: 0 };
+/** Pointer moves the last drag received (for tests: every move reaches the page), and of
+ * the targets it solved, how many had no solution of the kept family (`missed`). */
+export const moves = { count: 0, solved: 0, missed: 0 };
 
 /** The drag in progress (null when none): what the controller needs beyond the state. */
 let live = null;
@@ -41,6 +46,8 @@ export function isDragging() {
 
 function begin(fields) {
   moves.count = 0;
+  moves.solved = 0;
+  moves.missed = 0;
   timings.length = 0;
   live = { latest: null, answered: null, inFlight: false, releasing: false, failed: false, ...fields };
   document.body.dataset.dragging = "true";
@@ -59,7 +66,10 @@ export function startPointDrag(press) {
   // Under constraints or fixed control points the whole curve is solved: a local piece
   // would not carry the conditions outside it.
   const piece = model.constrained(state) ? { curve: base, poleOffset: 0, whole: true } : geometry.pieceAtParameter(base, state.pick.parameter);
-  begin({ kind: "point", base, piece, parameter: state.pick.parameter, origin: state.pick.point, press, family: state.family, alternatives: null, solution: null, nearest: null });
+  const offsets = { poleOffset: piece.poleOffset, knotOffset: geometry.knotOffsetOf(piece, base) };
+  // The knots the point was last moved by (the piece's convention): a folded pair's branch.
+  const knots = piece.curve.knots;
+  begin({ kind: "point", base, piece, offsets, knots, parameter: state.pick.parameter, origin: state.pick.point, press, family: state.family, alternatives: null, solution: null, nearest: null });
   store.set({ ...state, drag: { kind: "point", target: null, solution: null, family: state.family }, lastSolutions: null, message: "", error: "" });
 }
 
@@ -175,31 +185,43 @@ async function solveMove(drag, move, timing) {
   }
   const nearest = answer.value.nearest ?? null;
   const solutions = answer.value.solutions.length > 0 ? answer.value.solutions : nearest?.solutions ?? [];
+  const { offsets } = drag;
   if (!drag.family && solutions.length > 0) {
     const chosen = model.defaultChoice(solutions);
-    drag.family = geometry.familyOf(solutions[chosen], drag.piece.poleOffset);
+    drag.family = geometry.familyOf(solutions[chosen], offsets.poleOffset, offsets.knotOffset);
     drag.alternatives = solutions;
+    if (solutions[chosen].method === "knots") drag.knots = solutions[chosen].knots;
   }
-  const offset = drag.piece.poleOffset;
-  const solution = drag.family ? solutions.find((candidate) => geometry.inFamily(candidate, drag.family, offset)) : null;
+  const found = drag.family ? geometry.indexInFamily(solutions, drag.family, { ...offsets, knots: drag.knots }) : -1;
+  const solution = found >= 0 ? solutions[found] : null;
   const state = store.get();
+  moves.solved += 1;
   if (!solution) {
+    moves.missed += 1;
     drag.failed = true;
-    store.set({ ...state, drag: { ...state.drag, target: move.target, snapped: move.snapped, solution: null, previewDrawing: null, movedPoles: null, previewKnots: null, family: drag.family }, message: "No solution of this family moves the point towards this target.", error: "" });
+    store.set({ ...state, drag: { ...state.drag, target: move.target, snapped: move.snapped, solution: null, previewDrawing: null, movedPoles: null, previewKnots: null, family: drag.family }, message: drag.family ? `No solution of the kept family (${geometry.describeFamily(drag.family)}) moves the point towards this target: go back, or switch with the keys 1–9.` : "No solution moves the point towards this target.", error: "" });
     return false;
   }
   drag.failed = false;
   drag.solution = solution;
   drag.nearest = nearest;
+  if (solution.method === "knots") drag.knots = solution.knots;
   let previewDrawing = solution.svg_path ? { path: solution.svg_path, knotPoints: [] } : null;
   if (!previewDrawing) {
-    // Rational and 3D curves: the piece's certified polyline (a second request).
-    const drawing = await drawingOf(geometry.applySolution(drag.piece.curve, solution), { marks: false });
-    if (live !== drag) return false;
-    previewDrawing = drawing.problem ? null : drawing;
+    // Rational, 3D and curves of degree above 3: computed in the page.
+    const moved = geometry.applySolution(drag.piece.curve, solution);
+    const polyline = sampledCurve(moved, state.view.frame.scale, visibleBox(state.view.frame, state.view.size));
+    if (polyline) {
+      previewDrawing = { polyline, knotPoints: [] };
+    } else {
+      // A periodic curve: the API's certified polyline (a second request).
+      const drawing = await drawingOf(moved, { marks: false });
+      if (live !== drag) return false;
+      previewDrawing = drawing.problem ? null : drawing;
+    }
   }
   const alternatives = drag.alternatives ?? [solution];
-  const keptIndex = alternatives.findIndex((candidate) => geometry.inFamily(candidate, drag.family, offset));
+  const keptIndex = geometry.indexInFamily(alternatives, drag.family, { ...offsets, knots: drag.knots });
   store.set({
     ...store.get(),
     drag: {
@@ -211,7 +233,7 @@ async function solveMove(drag, move, timing) {
       family: drag.family,
       alternatives,
       keptIndex,
-      poleOffset: offset,
+      offsets,
       previewDrawing,
       movedPoles: movedPoles(solution, drag.piece.curve),
       previewKnots: movedKnots(drag, solution),
@@ -270,7 +292,9 @@ export function cancel() {
 /** During a point drag: keep the family of the first answer's solution `index` instead. */
 export function switchFamily(index) {
   if (!live || live.kind !== "point" || !live.alternatives?.[index]) return false;
-  live.family = geometry.familyOf(live.alternatives[index], live.piece.poleOffset);
+  const chosen = live.alternatives[index];
+  live.family = geometry.familyOf(chosen, live.offsets.poleOffset, live.offsets.knotOffset);
+  if (chosen.method === "knots") live.knots = chosen.knots;
   live.answered = null;
   if (live.latest && !live.inFlight) work(live);
   return true;
@@ -312,8 +336,11 @@ function finishPoint(drag) {
       api.solve(drag.base, drag.parameter, target, { methods, conditions }),
     ]);
     let solution = drag.solution;
+    // The whole curve's knots as the last preview moved them: the branch to commit.
+    const knots = solution.method === "knots" ? geometry.withMovedKnots(drag.base, movedKnots(drag, solution)) : null;
     if (own) {
-      const found = own.ok ? [...own.value.solutions, ...(own.value.nearest?.solutions ?? [])].find((s) => geometry.inFamily(s, drag.family)) : null;
+      const candidates = own.ok ? [...own.value.solutions, ...(own.value.nearest?.solutions ?? [])] : [];
+      const found = candidates[geometry.indexInFamily(candidates, drag.family, { knots })];
       if (!found) {
         const state = store.get();
         store.set({ ...state, drag: null, message: "", error: own.ok ? "Nothing committed: the kept family has no solution for the whole curve." : failureMessage(own.problem, "Nothing committed: ") });
@@ -322,7 +349,7 @@ function finishPoint(drag) {
       solution = found;
     }
     const listedSolutions = all.ok ? (all.value.solutions.length > 0 ? all.value.solutions : all.value.nearest?.solutions ?? []) : [];
-    let chosen = listedSolutions.findIndex((s) => geometry.inFamily(s, drag.family));
+    let chosen = geometry.indexInFamily(listedSolutions, drag.family, { knots });
     const solutions = chosen >= 0 ? listedSolutions.map((s, i) => (i === chosen ? solution : s)) : [solution, ...listedSolutions];
     if (chosen < 0) chosen = 0;
     return commitCurve(geometry.applySolution(drag.base, solution), {

@@ -51,19 +51,38 @@ export function dimension(curve) {
   return curve.control_points[0] ? curve.control_points[0].length : 2;
 }
 
-/** Why the knot-pair method cannot edit `curve` (it moves cubic, planar curves), or null.
- * The control-point and weight methods take any degree, 2D or 3D. */
+/** Why the knot method cannot edit `curve` (a polyline's shape does not depend on its
+ * knots), or null. It moves the points of every curve of degree 2 or more, planar or 3D
+ * (3D curves in their x–y projection, the point keeping its z). */
 export function knotsRefusal(curve) {
-  if (curve.degree !== 3) {
-    return `This curve has degree ${curve.degree}: the knot-pair method edits cubic curves only, so it is off; control points and weights move its points.`;
-  }
-  if (dimension(curve) !== 2) {
-    return "This is a 3D curve, shown and edited in its x–y projection (z is kept): the knot-pair method is off; control points and weights move its points.";
+  if (curve.degree < 2) {
+    return `This curve has degree ${curve.degree}: a polyline's shape does not depend on its knots, so the knot method is off; control points and weights move its points.`;
   }
   return null;
 }
 
-/** The methods of `methods` that can edit `curve` (the knot pairs only on planar cubics). */
+/** What the page says about editing `curve` beside its methods: why the knot method is off
+ * (degree 1), or how a 3D curve is edited; null for a planar curve of degree 2 or more. */
+export function methodsNote(curve) {
+  const refusal = knotsRefusal(curve);
+  if (refusal) return refusal;
+  if (dimension(curve) === 3) {
+    return "A 3D curve, shown and edited in its x–y projection: a dragged point keeps its z. The knot triples reach such targets near the point, the pairs only targets on their surfaces; regions are drawn only where they lie in the view's plane.";
+  }
+  return null;
+}
+
+/** The knot families that apply to `curve` (the API's default `knot_families`): the
+ * envelope on degree 3 or more, the direct pairs on degree 2 or more, triples on 3D curves. */
+export function knotFamiliesOf(curve) {
+  const families = [];
+  if (curve.degree >= 3) families.push("envelope");
+  if (curve.degree >= 2) families.push("direct");
+  if (dimension(curve) === 3) families.push("triples");
+  return families;
+}
+
+/** The methods of `methods` that can edit `curve` (the knots on degree 2 or more). */
 export function usableMethods(curve, methods) {
   return knotsRefusal(curve) ? methods.filter((method) => method !== "knots") : methods;
 }
@@ -113,14 +132,37 @@ export function withPole(curve, index, point) {
   return { ...curve, control_points };
 }
 
-/** Whether a regions answer has a knot-pair region (one the solver reaches: the service
- * draws only those, with the same `keep_domain` and `methods` as solving). */
+/** Whether a regions answer has a region of a knot pair (one the solver reaches: the
+ * service draws only those, with the same `keep_domain` and `methods` as solving). */
 export function hasKnotRegion(regionsAnswer) {
-  return regionsAnswer.candidates.some((candidate) => candidate.regions?.length > 0);
+  const families = regionsAnswer.families ?? [];
+  return families.some((family) => family.regions?.length > 0) || (regionsAnswer.candidates ?? []).some((candidate) => candidate.regions?.length > 0);
 }
 
-/** Poles a local piece keeps on each side beyond those a move can change. */
-const PIECE_MARGIN = 2;
+/** Whether all `points` have the same z (2D points: yes). */
+function levelIn(points) {
+  if (points.length === 0 || points[0].length < 3) return true;
+  const z = points.map((p) => p[2]);
+  const size = Math.max(...points.map((p) => Math.max(Math.abs(p[0]), Math.abs(p[1]), Math.abs(p[2]))), 1);
+  return Math.max(...z) - Math.min(...z) <= 1e-12 * size;
+}
+
+/**
+ * The knot families of a regions answer as the page draws them: per family entry (one per
+ * side for the envelope) `{ entry, drawn, note }`. A family's regions are drawn when the
+ * service drew them and, on a 3D curve, when they lie in the view's plane (the acting control
+ * points share one z): a drag keeps the point's z, so a region in a tilted plane holds no
+ * target the page sends.
+ */
+export function familyEntries(regionsAnswer) {
+  return (regionsAnswer?.families ?? []).map((entry) => {
+    if (!entry.applicable) return { entry, drawn: false, note: entry.reason ?? "not drawn" };
+    if (!levelIn(entry.control_points)) {
+      return { entry, drawn: false, note: "its regions lie in a tilted plane, and a drag keeps the point's z: not drawn" };
+    }
+    return { entry, drawn: entry.regions.length > 0, note: entry.regions.length > 0 ? "" : "no pair moves the point here" };
+  });
+}
 
 /**
  * The piece of `curve` made of control points `first..last` and their knots (full
@@ -151,19 +193,21 @@ export function spanIndex(curve, t) {
 }
 
 /**
- * The local piece a drag at parameter `t` in span k changes. A knot pair there moves knots
- * among u_k−2 … u_k+3 (a cubic), which changes poles k−6 … k+3 and the curve on
- * [u_k−3, u_k+4]; a control-point move changes poles k−p … k. The piece keeps poles
- * k−2p−2 … k+p+3 (a margin of PIECE_MARGIN beyond that), so its own domain ends never move
- * (or are the curve's), and solving it gives the same solutions as solving the whole curve.
- * The whole curve when the curve is small or its knots are in a form the page does not cut.
+ * The local piece a drag at parameter `t` in span k changes. Every knot family there moves
+ * knots among u_k−p+1 … u_k+p (the envelope's moved knot, u_k or u_k+1, is one of them), and
+ * a knot u_m shapes the curve only on [u_m−p, u_m+p]: the curve changes on
+ * [u_k−2p+1, u_k+2p]; a control-point or weight move changes poles k−p … k, less. The piece
+ * keeps poles k−3p+1 … k+2p, whose own domain [u_k−2p+1, u_k+2p+1] holds all of that, so its
+ * domain ends never move (or are the curve's), and solving it gives the same solutions, and
+ * the same deviations, as solving the whole curve. The whole curve when the curve is small
+ * or its knots are in a form the page does not cut.
  */
 export function pieceAtParameter(curve, t) {
   if (!hasPlainKnots(curve)) return { curve, poleOffset: 0, whole: true };
   const k = spanIndex(curve, t);
   const n = curve.control_points.length;
   const p = curve.degree;
-  return localPiece(curve, Math.max(0, k - 2 * p - PIECE_MARGIN), Math.min(n - 1, k + 1 + p + PIECE_MARGIN));
+  return localPiece(curve, Math.max(0, k - 3 * p + 1), Math.min(n - 1, k + 2 * p));
 }
 
 /** The local piece that moving pole `index` changes: the curve on [u_index, u_index+p+1]. */
@@ -180,37 +224,108 @@ export function drawingTolerance(curve) {
   return size > 0 ? size / 2000 : 1e-3;
 }
 
-/** The way a solution moves the point: its method, for knot pairs the side and region,
- * for weights the pair of poles (numbered on the whole curve: a solution of a local piece
- * whose first pole is the curve's `poleOffset` gives the same family as the whole curve's).
- * A drag keeps one family from its first answer to its release. */
-export function familyOf(solution, poleOffset = 0) {
-  if (solution.method === "knots") return { method: "knots", side: solution.side, region: solution.region };
+/** The region label `label` ("omega2", "direct:5,7", "triples:4,5,7") with its knot
+ * indices moved by `offset` (a solution of a local piece, numbered on the whole curve). */
+export function relabel(label, offset) {
+  if (!offset) return label;
+  const colon = label.indexOf(":");
+  if (colon < 0) return label;
+  const indices = label.slice(colon + 1).split(",").map((k) => Number(k) + offset);
+  return `${label.slice(0, colon)}:${indices.join(",")}`;
+}
+
+/** The offset from the knot indices of a drag's `piece` (geometry.localPiece) to those of
+ * the curve `whole` (its caller's convention); its pole offset is piece.poleOffset. */
+export function knotOffsetOf(piece, whole) {
+  if (piece.whole) return 0;
+  return piece.poleOffset - (isTrimmed(whole) ? 1 : 0);
+}
+
+/** The way a solution moves the point: its method, for knots the family, its side (the
+ * envelope's) and region (the pair or triple), for weights the pair of poles. A solution of
+ * a local piece whose first pole is the curve's `poleOffset` (and whose knot indices are
+ * the curve's minus `knotOffset`) gives the family numbered on the whole curve. A drag
+ * keeps one family from its first answer to its release. */
+export function familyOf(solution, poleOffset = 0, knotOffset = poleOffset) {
+  if (solution.method === "knots") {
+    const family = { method: "knots", family: solution.family ?? "envelope", region: relabel(solution.region, knotOffset) };
+    if (solution.side) family.side = solution.side;
+    return family;
+  }
   if (solution.method === "weights") return { method: "weights", poles: solution.poles.map((k) => k + poleOffset) };
   return { method: solution.method };
 }
 
-/** Whether `solution` (of a piece starting at pole `poleOffset`) belongs to `family`. */
-export function inFamily(solution, family, poleOffset = 0) {
-  const own = familyOf(solution, poleOffset);
-  return own.method === family.method && own.side === family.side && own.region === family.region && String(own.poles) === String(family.poles);
+/** Whether `solution` (of a piece; offsets as in familyOf) belongs to `family`. */
+export function inFamily(solution, family, poleOffset = 0, knotOffset = poleOffset) {
+  const own = familyOf(solution, poleOffset, knotOffset);
+  return own.method === family.method && own.family === family.family && own.side === family.side && own.region === family.region && String(own.poles) === String(family.poles);
 }
 
-/** A family in words: "knots · Ω2 (right)", "weights · poles 3, 4" or "control points". */
-export function describeFamily(family) {
-  if (family.method === "knots") {
-    return `knots · ${family.region.replace("omega", "Ω")} (${family.side})`;
+/** The largest difference between two knot vectors of the same curve (Infinity when their
+ * lengths differ). */
+function knotDistance(a, b) {
+  if (!a || !b || a.length !== b.length) return Infinity;
+  let largest = 0;
+  for (let i = 0; i < a.length; i += 1) largest = Math.max(largest, Math.abs(a[i] - b[i]));
+  return largest;
+}
+
+/**
+ * Index of the solution of `family` in `solutions` (of a piece; offsets as in familyOf), -1
+ * when none. A knot pair whose map folds has up to three solutions for one target: the one
+ * whose knots are nearest `knots` (the knot vector the point was last moved by, in the
+ * same curve's convention) is taken, so that a drag follows one branch and never jumps to
+ * another.
+ */
+export function indexInFamily(solutions, family, { poleOffset = 0, knotOffset = poleOffset, knots = null } = {}) {
+  let best = -1;
+  let bestDistance = Infinity;
+  solutions.forEach((solution, index) => {
+    if (!inFamily(solution, family, poleOffset, knotOffset)) return;
+    const distance = solution.method === "knots" ? knotDistance(solution.knots, knots) : 0;
+    if (best < 0 || distance < bestDistance) {
+      best = index;
+      bestDistance = distance;
+    }
+  });
+  return best;
+}
+
+/** The knots of `curve` (its convention) with the full-numbered `moved` values
+ * [[full index, value]] in place. */
+export function withMovedKnots(curve, moved) {
+  const knots = curve.knots.slice();
+  const shift = isTrimmed(curve) ? 1 : 0;
+  for (const [index, value] of moved) {
+    if (index - shift >= 0 && index - shift < knots.length) knots[index - shift] = value;
   }
+  return knots;
+}
+
+/** A region in words: "Ω2 (left)", "envelope u6,u9 (right)", "direct u5,u7",
+ * "triples u4,u5,u7". */
+export function describeRegion(region, side) {
+  const colon = region.indexOf(":");
+  const name = colon < 0 ? region.replace("omega", "Ω") : `${region.slice(0, colon)} ${region.slice(colon + 1).split(",").map((k) => `u${k}`).join(",")}`;
+  return side ? `${name} (${side})` : name;
+}
+
+/** A family in words: "knots · Ω2 (right)", "knots · direct u5,u7", "weights · poles 3, 4"
+ * or "control points". */
+export function describeFamily(family) {
+  if (family.method === "knots") return `knots · ${describeRegion(family.region, family.side)}`;
   if (family.method === "weights") return `weights · poles ${family.poles.join(", ")}`;
   return family.method.replace("_", " ");
 }
 
 /** A short description of a solution for the list (of a local piece whose first pole is
- * the curve's `poleOffset`: poles numbered on the whole curve). */
-export function describeSolution(solution, poleOffset = 0) {
+ * the curve's `poleOffset`, knot indices as in familyOf: numbered on the whole curve). */
+export function describeSolution(solution, poleOffset = 0, knotOffset = poleOffset) {
   const deviation = solution.max_deviation.toPrecision(3);
   if (solution.method === "knots") {
-    return `${describeFamily(familyOf(solution))} · knots ${solution.changed_knots.join(", ")} · max deviation ${deviation}`;
+    const changed = solution.changed_knots.map((k) => k + knotOffset).join(", ");
+    return `${describeFamily(familyOf(solution, poleOffset, knotOffset))} · knots ${changed} · max deviation ${deviation}`;
   }
   if (solution.method === "weights") {
     const weights = solution.poles.map((k) => +solution.weights[k].toPrecision(4)).join(", ");

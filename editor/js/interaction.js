@@ -298,6 +298,7 @@ export function bind(elements, actions) {
   });
   elements.snaps.addEventListener("change", () => actions.setSnap(ticked(elements.snaps)));
   elements.layers.addEventListener("change", () => actions.setLayers(ticked(elements.layers)));
+  elements.families.addEventListener("change", () => actions.setFamilies(ticked(elements.families)));
   const typed = () => actions.moveToTyped(Number.parseFloat(elements.targetX.value), Number.parseFloat(elements.targetY.value));
   elements.moveTo.addEventListener("click", typed);
   for (const field of [elements.targetX, elements.targetY]) {

@@ -32,7 +32,7 @@ const IDS = {
   readout: "readout", targetX: "target-x", targetY: "target-y", moveTo: "move-to",
   exportStep: "export-step", exportDxf: "export-dxf", imported: "imported",
   sketchTolerance: "sketch-tolerance", sketchFinish: "sketch-finish", sketchDiscard: "sketch-discard",
-  methodsNote: "methods-note", conditionsSummary: "conditions-summary", clearConditions: "clear-conditions",
+  methodsNote: "methods-note", families: "families", conditionsSummary: "conditions-summary", clearConditions: "clear-conditions",
 };
 
 const elements = Object.fromEntries(Object.entries(IDS).map(([name, id]) => [name, document.getElementById(id)]));
@@ -87,6 +87,11 @@ function setMethods(methods) {
   store.nextGeneration();
   store.set({ ...state, methods, family: null, lastSolutions: null, regions: null, message: "", error: "" });
   if (state.pick) committing.refresh();
+}
+
+/** Which knot families' regions are drawn (solving still offers every family). */
+function setFamilies(families) {
+  store.set({ ...store.get(), families });
 }
 
 function setLayers(layers) {
@@ -148,6 +153,7 @@ function start() {
     setMethods,
     setSnap: (snap) => store.set({ ...store.get(), snap }),
     setLayers,
+    setFamilies,
     mark: (point, pole) => {
       const tool = store.get().tool;
       if (pole !== undefined) return tool === "pin" ? conditions.toggleFixed(pole) : conditions.toggleAt(point, 1);

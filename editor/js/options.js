@@ -13,9 +13,18 @@ export const TOOLS = [
 
 /** The solver's methods the page can ask for (`id` is the API's name; `on` by default). */
 export const METHODS = [
-  { id: "knots", label: "knots (Ω1–Ω6)", on: true },
+  { id: "knots", label: "knots (pairs; triples in 3D)", on: true },
   { id: "control_points", label: "control points", on: true },
   { id: "weights", label: "weights (two per move)", on: false },
+];
+
+/** The knot families (the API's `knot_families`), each with its regions' legend and a box
+ * that hides them (solving still offers their solutions); `drawn`: whether the service
+ * draws its regions at all. */
+export const FAMILIES = [
+  { id: "envelope", label: "envelope", help: "a knot next to t moves to t, then a pair of the envelope's knots (degree 3 or more; a cubic's Ω1–Ω6)", drawn: true },
+  { id: "direct", label: "direct", help: "a pair of the curve's own knots around t (degree 2 or more)", drawn: true },
+  { id: "triples", label: "triples", help: "three of the curve's own knots: they reach 3D targets off the pairs' surfaces (3D curves)", drawn: false },
 ];
 
 /** Layers of the drawing that can be hidden; `shown` is the default. */

@@ -1,13 +1,31 @@
-// The panel beside the drawing: builds its lists (tools, methods, snapping, layers,
-// shortcuts, legend) from options.js once, then draws a state into it — the solution list,
-// the notices, the banner, the readout, the typed target — and mirrors what tests read into
-// body[data-*]. It reads the state and never changes it.
+// The panel beside the drawing: builds its lists (tools, methods, knot families, snapping,
+// layers, shortcuts, legend) from options.js once, then draws a state into it — the knot
+// families' legend, the solution list, the notices, the banner, the readout, the typed
+// target — and mirrors what tests read into body[data-*]. It reads the state and never
+// changes it.
 
-import { describeFamily, describeSolution, knotsRefusal } from "./geometry.js";
-import { LAYERS, METHODS, SHORTCUTS, SNAPS, TOOLS } from "./options.js";
+import { describeFamily, describeRegion, describeSolution, familyEntries, familyOf, knotsRefusal, methodsNote } from "./geometry.js";
+import { FAMILIES, LAYERS, METHODS, SHORTCUTS, SNAPS, TOOLS } from "./options.js";
 import { currentCurve, editBase } from "./state.js";
-import { REGION_COLOURS } from "./view.js";
+import { familyPairs, regionColour } from "./view.js";
 import { decimals } from "./viewport.js";
+
+const SVG_NS = "http://www.w3.org/2000/svg";
+
+/** A colour swatch (a small SVG square: the page's style rules allow no inline style). */
+function swatch(colour, title, className = "") {
+  const svg = document.createElementNS(SVG_NS, "svg");
+  svg.setAttribute("class", `pair-swatch ${className}`.trim());
+  svg.setAttribute("width", "12");
+  svg.setAttribute("height", "12");
+  svg.setAttribute("viewBox", "0 0 12 12");
+  const rect = document.createElementNS(SVG_NS, "rect");
+  for (const [key, value] of Object.entries({ x: 0.5, y: 0.5, width: 11, height: 11, fill: colour, stroke: colour })) rect.setAttribute(key, String(value));
+  const tip = document.createElementNS(SVG_NS, "title");
+  tip.textContent = title;
+  svg.append(tip, rect);
+  return svg;
+}
 
 /** A checkbox `id` labelled `text`, appended to `parent`. */
 function checkbox(parent, id, text, name) {
@@ -32,6 +50,28 @@ export function buildPanel(elements) {
     elements.tools.appendChild(button);
   }
   for (const method of METHODS) checkbox(elements.methods, `method-${method.id.replace("_", "-")}`, method.label, "method");
+  for (const family of FAMILIES) {
+    // A row per knot family: a box that hides its regions (none for the triples, which are
+    // never drawn), its pairs' colours and a note (how many pairs, or why none is drawn).
+    const row = document.createElement("div");
+    row.className = "family";
+    row.dataset.family = family.id;
+    row.title = family.help;
+    if (family.drawn) {
+      checkbox(row, `family-${family.id}`, family.label, "family");
+    } else {
+      const name = document.createElement("span");
+      name.className = "family-name";
+      name.textContent = family.label;
+      row.appendChild(name);
+    }
+    const swatches = document.createElement("span");
+    swatches.className = "family-swatches";
+    const note = document.createElement("span");
+    note.className = "family-note";
+    row.append(swatches, note);
+    elements.families.appendChild(row);
+  }
   for (const kind of SNAPS) checkbox(elements.snaps, `snap-${kind.id}`, kind.label, "snap");
   for (const shown of LAYERS) checkbox(elements.layers, `layer-${shown.id}`, shown.label, "layer");
   for (const [keys, what] of SHORTCUTS) {
@@ -42,7 +82,7 @@ export function buildPanel(elements) {
     elements.shortcuts.append(term, description);
   }
   const items = [
-    ...Object.keys(REGION_COLOURS).map((name) => [`swatch ${name}`, name.replace("omega", "Ω")]),
+    ["swatch knot-region", "knot pair's reach (colours: Knot families)"],
     ["swatch weights", "weight pair's reach"],
     ["swatch triangle", "control triangle"],
     ["swatch pin", "pin / tangent lock"],
@@ -68,7 +108,7 @@ export function buildPanel(elements) {
 function listed(state) {
   const drag = state.drag;
   if (drag?.kind === "point" && drag.alternatives) {
-    return { solutions: drag.alternatives, chosen: drag.keptIndex, live: drag.solution, nearest: drag.nearest, family: drag.family, poleOffset: drag.poleOffset };
+    return { solutions: drag.alternatives, chosen: drag.keptIndex, live: drag.solution, nearest: drag.nearest, family: drag.family, offsets: drag.offsets };
   }
   const entry = state.lastSolutions;
   return entry ? { solutions: entry.solutions, chosen: entry.chosen, live: null, nearest: entry.nearest, excluded: entry.excluded, family: state.family } : null;
@@ -76,13 +116,8 @@ function listed(state) {
 
 let drawnList = null;
 
-function drawSolutions(state, elements) {
-  const entry = listed(state);
-  const key = entry && [entry.solutions, entry.chosen, entry.live, entry.nearest];
-  if (drawnList && key && key.every((value, i) => value === drawnList[i])) return;
-  if (!drawnList && !key) return;
-  drawnList = key;
-  elements.solutions.replaceChildren();
+/** The list's note: the nearest point followed, the family kept, what the conditions left out. */
+function solutionsNote(state, entry) {
   let note = "";
   if (entry?.nearest) {
     note = `Target outside every region: following the nearest reachable point (distance ${entry.nearest.distance.toPrecision(3)}).`;
@@ -94,8 +129,43 @@ function drawSolutions(state, elements) {
     const dropped = entry.excluded.map((e) => `${e.count} ${e.method.replace("_", " ")} (${e.reason})`).join("; ");
     note = `${note ? `${note} ` : ""}Left out under the conditions: ${dropped}.`;
   }
+  return note;
+}
+
+/** The text of the list's entry `index`: the solution (the kept one's live values during a
+ * drag), numbered among its pair's solutions when a folded pair has several. */
+function entryText(entry, keys, index) {
+  const { poleOffset = 0, knotOffset = poleOffset } = entry.offsets ?? {};
+  const shown = index === entry.chosen && entry.live ? entry.live : entry.solutions[index];
+  const siblings = keys.filter((key) => key === keys[index]).length;
+  const which = siblings > 1 ? ` · solution ${keys.slice(0, index + 1).filter((key) => key === keys[index]).length} of ${siblings}` : "";
+  return ` ${describeSolution(shown, poleOffset, knotOffset)}${which}`;
+}
+
+/** The solution list. A drag move changes only the kept entry's live values: then only
+ * that entry's text is rewritten (rebuilding some forty entries per move costs the browser
+ * a layout of them all). */
+function drawSolutions(state, elements) {
+  const entry = listed(state);
+  const key = entry && [entry.solutions, entry.chosen, entry.live, entry.nearest];
+  if (drawnList && key && key.every((value, i) => value === drawnList[i])) return;
+  if (!drawnList && !key) return;
+  const note = solutionsNote(state, entry);
+  const { poleOffset = 0, knotOffset = poleOffset } = entry?.offsets ?? {};
+  // A knot pair whose map folds gives several solutions: numbered "solution 2 of 3".
+  const keys = (entry?.solutions ?? []).map((solution) => JSON.stringify(familyOf(solution, poleOffset, knotOffset)));
+  const sameList = drawnList && key && key[0] === drawnList[0] && key[1] === drawnList[1] && key[3] === drawnList[3];
+  drawnList = key;
+  if (sameList && elements.solutionsNote.textContent === note) {
+    const text = elements.solutions.children[entry.chosen]?.firstChild?.lastChild;
+    if (text) {
+      text.data = entryText(entry, keys, entry.chosen);
+      return;
+    }
+  }
+  elements.solutions.replaceChildren();
   elements.solutionsNote.textContent = note;
-  for (const [index, solution] of (entry?.solutions ?? []).entries()) {
+  for (const index of (entry?.solutions ?? []).keys()) {
     const item = document.createElement("li");
     const label = document.createElement("label");
     const radio = document.createElement("input");
@@ -103,8 +173,7 @@ function drawSolutions(state, elements) {
     radio.name = "solution";
     radio.value = String(index);
     radio.checked = index === entry.chosen;
-    const shown = index === entry.chosen && entry.live ? entry.live : solution;
-    label.append(radio, ` ${describeSolution(shown, entry.poleOffset ?? 0)}`);
+    label.append(radio, document.createTextNode(entryText(entry, keys, index)));
     item.appendChild(label);
     if (index === entry.chosen) item.className = "kept";
     elements.solutions.appendChild(item);
@@ -170,9 +239,9 @@ function drawConditions(state, elements) {
   body.sketch = JSON.stringify(state.sketch);
   elements.sketchFinish.disabled = state.sketch.length < 2;
   elements.sketchDiscard.disabled = state.sketch.length === 0;
-  const refusal = knotsRefusal(currentCurve(state));
-  document.getElementById("method-knots").disabled = Boolean(refusal);
-  elements.methodsNote.textContent = refusal ?? "";
+  const curve = currentCurve(state);
+  document.getElementById("method-knots").disabled = Boolean(knotsRefusal(curve));
+  elements.methodsNote.textContent = methodsNote(curve) ?? "";
   const pins = state.constraints.filter((c) => c.order === 0).length;
   const tangents = state.constraints.length - pins;
   const parts = [];
@@ -182,6 +251,47 @@ function drawConditions(state, elements) {
   const note = state.constraints.length > 0 ? "; only the regions whose edits keep them are drawn" : "";
   elements.conditionsSummary.textContent = parts.length > 0 ? `${parts.join(", ")}${note}.` : "Nothing pinned.";
   elements.clearConditions.disabled = parts.length === 0;
+}
+
+let drawnFamilies = null;
+
+/** The knot families' legend: per family its drawn pairs' colours and a note — how many
+ * pairs are drawn, or why none is (the family does not apply, the service does not draw its
+ * reach, or its regions lie in a tilted plane of a 3D curve) — and the boxes' state;
+ * rewritten only when the regions or the boxes changed (not on every drag move). */
+function drawFamilies(state, elements) {
+  const key = [state.regions, state.families, state.methods];
+  if (drawnFamilies && key.every((value, i) => value === drawnFamilies[i])) return;
+  drawnFamilies = key;
+  const entries = familyEntries(state.regions);
+  const pairs = familyPairs(state.regions);
+  const knotsOn = state.methods.includes("knots");
+  for (const family of FAMILIES) {
+    const row = elements.families.querySelector(`[data-family=${family.id}]`);
+    const box = row.querySelector("input");
+    if (box) box.checked = state.families[family.id];
+    const labels = pairs[family.id] ?? [];
+    const swatches = row.querySelector(".family-swatches");
+    swatches.replaceChildren(...labels.map((label, index) => swatch(regionColour(family.id, label, index, labels.length), describeRegion(label))));
+    const own = entries.filter((e) => e.entry.family === family.id);
+    let note = "";
+    if (!knotsOn) {
+      note = "knots off";
+    } else if (!state.regions) {
+      note = family.drawn ? "pick a point" : "never drawn";
+    } else if (labels.length > 0) {
+      const sides = own.filter((e) => e.drawn && e.entry.side).map((e) => e.entry.side);
+      note = `${labels.length} pair${labels.length === 1 ? "" : "s"}${sides.length > 0 ? ` (${sides.join(", ")})` : ""}`;
+    } else if (own.length > 0) {
+      note = [...new Set(own.map((e) => e.note))].join("; ");
+    } else {
+      note = family.id === "envelope" ? "degree 3 or more" : family.id === "triples" ? "3D curves" : "does not apply here";
+    }
+    const shownNote = row.querySelector(".family-note");
+    shownNote.textContent = note;
+    row.classList.toggle("hidden-family", Boolean(box) && !state.families[family.id]);
+    row.dataset.pairs = String(labels.length);
+  }
 }
 
 /** Sets body[data-name] to `value` only when it differs: every attribute written on the body
@@ -207,6 +317,7 @@ export function drawPanel(state, elements) {
   for (const button of elements.tools.children) button.setAttribute("aria-pressed", String(button.dataset.tool === state.tool));
   for (const method of METHODS) document.getElementById(`method-${method.id.replace("_", "-")}`).checked = state.methods.includes(method.id);
   drawConditions(state, elements);
+  drawFamilies(state, elements);
   for (const kind of SNAPS) document.getElementById(`snap-${kind.id}`).checked = state.snap[kind.id];
   for (const shown of LAYERS) document.getElementById(`layer-${shown.id}`).checked = state.layers[shown.id];
   const body = document.body.dataset;

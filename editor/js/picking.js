@@ -15,11 +15,15 @@ import { PICK_RADIUS } from "./view.js";
  * drawing tolerances (its polygons are not drawn). */
 const REGION_PROBE_TOLERANCE = 10;
 
-/** Whether a knot-pair region is at `t` of `curve` (whatever the constraints rule out): from
- * `regions` when it was asked with the knots method and no constraints, else by asking. */
+/** Whether a knot pair moves the point at `t` of `curve` (whatever the constraints rule
+ * out): from `regions` when it was asked with the knots method and no constraints, else by
+ * asking. A 3D curve is asked in its x–y projection, whose regions are always drawn (the
+ * same knots move the point of both). */
 async function knotRegionAt(curve, t, regions, state) {
-  if (regions?.ok && regionMethods(curve, state).includes("knots") && state.constraints.length === 0) return geometry.hasKnotRegion(regions.value);
-  const probe = await api.regions(curve, t, REGION_PROBE_TOLERANCE * geometry.drawingTolerance(curve), { methods: ["knots"] });
+  const planar = geometry.dimension(curve) === 2;
+  if (planar && regions?.ok && regionMethods(curve, state).includes("knots") && state.constraints.length === 0) return geometry.hasKnotRegion(regions.value);
+  const probed = geometry.projected(curve);
+  const probe = await api.regions(probed, t, REGION_PROBE_TOLERANCE * geometry.drawingTolerance(probed), { methods: ["knots"] });
   return probe.ok && geometry.hasKnotRegion(probe.value);
 }
 

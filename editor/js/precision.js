@@ -30,7 +30,8 @@ function moveTo(target, { merge = false, nudging = false } = {}) {
     }
     const nearest = answer.value.nearest ?? null;
     const solutions = answer.value.solutions.length > 0 ? answer.value.solutions : nearest?.solutions ?? [];
-    const chosen = state.family ? solutions.findIndex((s) => geometry.inFamily(s, state.family)) : model.defaultChoice(solutions);
+    // The kept family's solution (of a folded pair's several, the smallest knot move).
+    const chosen = state.family ? geometry.indexInFamily(solutions, state.family, { knots: base.knots }) : model.defaultChoice(solutions);
     if (chosen < 0 || solutions.length === 0) {
       store.set({ ...store.get(), message: "No solution moves the point towards this target.", error: "" });
       return false;

@@ -2,7 +2,7 @@
 // old one. Nothing here draws or requests; the controller calls these and then draws the
 // result (event → new state → draw).
 
-import { LAYERS, METHODS, SNAPS } from "./options.js";
+import { FAMILIES, LAYERS, METHODS, SNAPS } from "./options.js";
 import { usableMethods } from "./geometry.js";
 
 /** A fresh state editing `curve`, drawn in `frame` on a drawing of `size`. */
@@ -21,6 +21,7 @@ export function initialState(curve, frame, size) {
     fixed: [], // indices of the control points no solution may move
     sketch: [], // the points of "draw by points" (sketching.js)
     layers: Object.fromEntries(LAYERS.map((layer) => [layer.id, layer.shown])),
+    families: Object.fromEntries(FAMILIES.map((family) => [family.id, true])), // the knot families whose regions are shown
     snap: Object.fromEntries(SNAPS.map((kind) => [kind.id, false])),
     tool: "edit",
     pointer: null, // the curve point under the pointer, for the readout
@@ -31,7 +32,7 @@ export function initialState(curve, frame, size) {
 }
 
 /** The methods the page asks the solver for: the ticked ones that can edit the curve (the
- * knot pairs only on planar cubics). */
+ * knots on degree 2 or more). */
 export function methodsFor(state) {
   return usableMethods(editBase(state), state.methods);
 }

@@ -2,6 +2,7 @@
 // polygon, curve, preview, knot marks, control-point handles, dots). Each layer is redrawn
 // only when what it shows changed. It reads the state and never changes it.
 
+import { familyEntries } from "./geometry.js";
 import { editBase } from "./state.js";
 import { element, layer, pairs, redraw, setAttribute } from "./render.js";
 import { gridStep, toScreen, visibleBox } from "./viewport.js";
@@ -22,7 +23,8 @@ const COMB_PIXELS = 60;
 /** Half the length of a tangent lock's mark, in pixels. */
 const TANGENT_MARK = 22;
 
-/** Okabe & Ito's colour-blind-safe palette, the same as the service's SVG picture. */
+/** A cubic's envelope pairs Ω1–Ω6: Okabe & Ito's colour-blind-safe palette, the same as
+ * the service's SVG picture. */
 export const REGION_COLOURS = {
   omega1: "#e69f00",
   omega2: "#56b4e9",
@@ -31,6 +33,30 @@ export const REGION_COLOURS = {
   omega5: "#0072b2",
   omega6: "#d55e00",
 };
+
+/** The hue of each knot family's pairs (other than a cubic's Ω1–Ω6): the envelope orange,
+ * the direct pairs reddish purple (Okabe & Ito's seventh colour, used by no Ω), each pair a
+ * tint of it. */
+const FAMILY_HUES = { envelope: 32, direct: 326, triples: 200 };
+
+/** The colour of the `index`th of a family's `count` pairs, `region` its label. */
+export function regionColour(family, region, index, count) {
+  if (REGION_COLOURS[region]) return REGION_COLOURS[region];
+  const lightness = count > 1 ? 28 + (44 * index) / (count - 1) : 50;
+  return `hsl(${FAMILY_HUES[family] ?? 0}, 72%, ${lightness.toFixed(1)}%)`;
+}
+
+/** Per knot family of a regions answer, its drawn pairs' labels in order (the envelope's two
+ * sides share a pair's label, and its colour). */
+export function familyPairs(regions) {
+  const pairs = {};
+  for (const { entry, drawn } of familyEntries(regions)) {
+    if (!drawn) continue;
+    const labels = (pairs[entry.family] ??= []);
+    for (const region of entry.regions) if (!labels.includes(region.region)) labels.push(region.region);
+  }
+  return pairs;
+}
 
 /** Indices of `points` spaced at least `spacing` pixels apart on screen (ends kept). */
 function thinned(frame, points, spacing) {
@@ -76,20 +102,36 @@ function drawGrid(frame, size, group) {
   element("path", { d: lines.join(""), class: "grid" }, group);
 }
 
-function drawRegions(regions, group) {
-  for (const candidate of regions?.candidates ?? []) {
-    for (const region of candidate.regions) {
-      element("polygon", {
-        points: pairs(region.polygon),
-        class: "region",
-        fill: REGION_COLOURS[region.region],
-        stroke: REGION_COLOURS[region.region],
+/** The SVG path of closed `rings` (each with its first point repeated last). */
+export function ringsPath(rings) {
+  return rings.map((ring) => `M${ring.slice(0, -1).map((p) => `${p[0]},${p[1]}`).join("L")}Z`).join("");
+}
+
+/** The knot families' regions whose family is `shown` (each region one path of all its
+ * rings, filled by the non-zero rule: outer rings counter-clockwise, holes clockwise), and a
+ * cubic's control triangles. */
+function drawRegions(regions, shown, group) {
+  const colours = familyPairs(regions);
+  for (const { entry, drawn } of familyEntries(regions)) {
+    if (!drawn || !shown[entry.family]) continue;
+    const labels = colours[entry.family];
+    for (const region of entry.regions) {
+      const colour = regionColour(entry.family, region.region, labels.indexOf(region.region), labels.length);
+      const attributes = {
+        d: ringsPath(region.polygons),
+        class: `region family-${entry.family}${REGION_COLOURS[region.region] ? "" : " tinted"}`,
+        fill: colour,
+        stroke: colour,
+        "fill-rule": "nonzero",
+        "data-family": entry.family,
         "data-region": region.region,
-        "data-side": candidate.side,
-      }, group);
+        "data-tolerance": entry.tolerance ?? "",
+      };
+      if (entry.side) attributes["data-side"] = entry.side;
+      element("path", attributes, group);
     }
-    if (candidate.applicable && candidate.triangle && candidate.regions.length > 0) {
-      element("polygon", { points: pairs(candidate.triangle), class: "triangle", "data-side": candidate.side }, group);
+    if (entry.family === "envelope" && entry.control_points.length === 3) {
+      element("polygon", { points: pairs(entry.control_points), class: "triangle", "data-side": entry.side }, group);
     }
   }
   // The weight pairs' quadrilaterals: where moving the two weights of poles k, l puts the point.
@@ -205,7 +247,7 @@ export function drawScene(state, scene) {
   const showGrid = shows.grid || state.snap.grid;
   redraw(layers.grid, [showGrid, frame, size], (group) => showGrid && drawGrid(frame, size, group));
   const regions = shows.regions ? state.regions : null;
-  redraw(layers.regions, [regions], (group) => drawRegions(regions, group));
+  redraw(layers.regions, [regions, state.families], (group) => drawRegions(regions, state.families, group));
   redraw(layers.control, [shows.control, base], (group) => {
     if (shows.control) element("polyline", { points: pairs(base.control_points), class: "control polygon" }, group);
   });

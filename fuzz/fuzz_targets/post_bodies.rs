@@ -1,11 +1,11 @@
 //! Raw bytes as the body of every POST endpoint, through the real router in-process
-//! (`knotshape::fuzzing`): no server error, every client error a problem document that says
+//! (`knotshape_fuzzing`): no server error, every client error a problem document that says
 //! why. The first byte picks the endpoint.
 #![no_main]
 
 use std::sync::OnceLock;
 
-use knotshape::fuzzing::Target;
+use knotshape_fuzzing::Target;
 use libfuzzer_sys::fuzz_target;
 use tokio::runtime::Runtime;
 

@@ -164,10 +164,13 @@ pub fn apply(document: &mut Value) {
     document_headers_servers_and_open_operations(document);
 }
 
-/// The candidates of membership and regions answers as unions told apart by `applicable`
-/// (`true`: the side applies and has its `triangle`; `false`: it does not, and says why in
-/// `reason`), so that typed clients can narrow them. Built from `CandidateBody`, which only
-/// serde's flattening used, and which goes.
+/// The candidates of membership (and solve) and regions answers as unions told apart by
+/// `applicable` (`true`: the side applies, and in membership and solve answers has the
+/// target's `frame`; `false`: it does not, and says why in `reason`), so that typed clients
+/// can narrow them: every field a variant always carries is required in it. Both carry the
+/// `triangle` (a cubic's sides at a parameter of its domain always have one, degenerate or
+/// not) and `regions`. Built from `CandidateBody`, which only serde's flattening used, and
+/// which goes.
 fn candidates_as_unions(schemas: &mut Map<String, Value>) {
     let Some(base) = schemas.remove("CandidateBody") else {
         return;
@@ -201,14 +204,23 @@ fn candidates_as_unions(schemas: &mut Map<String, Value>) {
             properties.insert("regions".into(), regions.clone());
         }
         let example = schema.get("example").cloned().unwrap_or(Value::Null);
+        // Membership and solve answers have a target: an applicable side always carries its
+        // frame. Regions answers have none, so no side there has a frame.
+        let with_target = name == "MembershipCandidate";
         let variant = |applicable: bool| {
             let mut properties = properties.clone();
-            let (needed, gone) = if applicable {
-                ("triangle", "reason")
+            let mut needed = vec!["regions", "triangle"];
+            if applicable {
+                properties.remove("reason");
+                if with_target {
+                    needed.push("frame");
+                }
             } else {
-                ("reason", "frame")
-            };
-            properties.remove(gone);
+                needed.push("reason");
+            }
+            if !(applicable && with_target) {
+                properties.remove("frame");
+            }
             properties.insert(
                 "applicable".into(),
                 json!({"type": "boolean", "const": applicable,
@@ -216,7 +228,7 @@ fn candidates_as_unions(schemas: &mut Map<String, Value>) {
                                       else { "`false`: this side cannot move the point (see `reason`)." }}),
             );
             let mut required = base_required.clone();
-            required.extend([json!("regions"), json!(needed)]);
+            required.extend(needed.into_iter().map(Value::from));
             let example = if applicable {
                 example.clone()
             } else {

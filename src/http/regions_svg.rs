@@ -419,6 +419,7 @@ mod tests {
     fn an_empty_answer_is_still_a_picture() {
         let regions = RegionsResponse {
             candidates: Vec::new(),
+            families: Vec::new(),
             weight_regions: Vec::new(),
         };
         let picture = Picture {

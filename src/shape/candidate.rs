@@ -140,50 +140,63 @@ pub fn candidate(curve: &Curve, t: f64, side: Side, target: Option<Point>) -> Ca
     let d = curve.control_points();
     let triangle = [d[span - 2], d[span - 1], d[span]];
     candidate.triangle = Some(triangle);
-    let size = triangle_size(&triangle);
+    let weights = [span - 2, span - 1, span].map(|i| curve.weight(i));
+    match triangle_frame(&triangle, curve.is_rational().then_some(weights), target) {
+        Ok(frame) => candidate.frame = frame,
+        Err(reason) => candidate.not_applicable = Some(reason),
+    }
+    candidate
+}
+
+/// The target's frame in a control triangle `d_0, d_1, d_2` (with the poles' weights for a
+/// rational curve): `Ok(None)` without a target; an error when the triangle is degenerate or
+/// the target is off its plane (docs/method.md §3.3, §7, §8).
+pub(crate) fn triangle_frame(
+    triangle: &[Point; 3],
+    weights: Option<[f64; 3]>,
+    target: Option<Point>,
+) -> Result<Option<Frame>, NotApplicable> {
+    let size = triangle_size(triangle);
     let e1 = sub(triangle[0], triangle[1]);
     let e2 = sub(triangle[2], triangle[1]);
     let normal = cross(e1, e2);
     let area2 = norm(normal);
     if area2.is_nan() || area2 <= DEGENERACY_TOLERANCE * size * size {
-        candidate.not_applicable = Some(NotApplicable::DegenerateTriangle);
-        return candidate;
+        return Err(NotApplicable::DegenerateTriangle);
     }
     let Some(target) = target else {
-        return candidate;
+        return Ok(None);
     };
     let r = sub(target, triangle[1]);
     let distance = dot(r, normal).abs() / area2;
     let tolerance = PLANE_TOLERANCE * size;
     if distance > tolerance {
-        candidate.not_applicable = Some(NotApplicable::OffPlane {
+        return Err(NotApplicable::OffPlane {
             distance,
             tolerance,
         });
-        return candidate;
     }
     // Barycentric coordinates in the plane: λ0 = r·(e2 × n)/|n|², λ2 = r·(n × e1)/|n|².
     let area2_sq = area2 * area2;
     let lambda0 = dot(r, cross(e2, normal)) / area2_sq;
     let lambda2 = dot(r, cross(normal, e1)) / area2_sq;
-    candidate.frame = Some(weighted_frame(curve, span, lambda0, lambda2));
-    candidate
+    Ok(Some(weighted_frame(weights, lambda0, lambda2)))
 }
 
 /// The basis-value frame of barycentric `(λ0, 1 - λ0 - λ2, λ2)` (docs/method.md §7); equal to
 /// `(λ0, λ2)` for a non-rational curve. When `S <= 0` (only for targets far outside the
 /// triangle, which no knot pair reaches) it falls back to the geometric `(λ0, λ2)`.
-fn weighted_frame(curve: &Curve, span: usize, lambda0: f64, lambda2: f64) -> Frame {
-    if !curve.is_rational() {
+fn weighted_frame(weights: Option<[f64; 3]>, lambda0: f64, lambda2: f64) -> Frame {
+    let Some([w0, w1, w2]) = weights else {
         return Frame {
             x: lambda0,
             y: lambda2,
         };
-    }
+    };
     let lambda1 = 1.0 - lambda0 - lambda2;
-    let q0 = lambda0 / curve.weight(span - 2);
-    let q1 = lambda1 / curve.weight(span - 1);
-    let q2 = lambda2 / curve.weight(span);
+    let q0 = lambda0 / w0;
+    let q1 = lambda1 / w1;
+    let q2 = lambda2 / w2;
     let s = q0 + q1 + q2;
     if s > 0.0 {
         Frame {
@@ -216,5 +229,51 @@ pub fn frame_to_point(curve: &Curve, span: usize, x: f64, y: f64) -> Point {
         numerator.map(|v| v / denominator)
     } else {
         numerator
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::spline::CurveLimits;
+
+    /// Both sides of a cubic at any parameter of its domain have a control triangle (the
+    /// span `m` of `t` lies in `[p, n]`, so `2 <= j <= n` for `j = m − 1` and `j = m`): the
+    /// answers always carry `triangle`, and, with a planar target, an applicable side its
+    /// frame (the OpenAPI document requires both).
+    #[test]
+    fn every_side_of_a_cubic_has_a_triangle_and_an_applicable_one_a_frame() {
+        let points = [[0.0, 0.0], [1.0, 2.0], [3.0, 2.5], [4.0, 0.0], [6.0, 1.0]];
+        let limits = CurveLimits::default();
+        let curves = [
+            // One Bézier piece (n = p), clamped.
+            Curve::new(
+                3,
+                &points[..4],
+                &[0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0],
+                None,
+                &limits,
+            ),
+            // Unclamped, two spans.
+            Curve::new(
+                3,
+                &points,
+                &[0.0, 0.1, 0.2, 0.3, 0.6, 0.8, 0.9, 1.0, 1.2],
+                None,
+                &limits,
+            ),
+        ];
+        for curve in curves {
+            let curve = curve.unwrap();
+            let (lo, hi) = curve.domain();
+            for k in 0..=20 {
+                let t = lo + (hi - lo) * f64::from(k) / 20.0;
+                for side in [Side::Left, Side::Right] {
+                    let found = candidate(&curve, t, side, Some([2.0, 1.0, 0.0]));
+                    assert!(found.triangle.is_some(), "{t} {side:?}: {found:?}");
+                    assert_eq!(found.frame.is_some(), found.is_applicable(), "{t} {side:?}");
+                }
+            }
+        }
     }
 }

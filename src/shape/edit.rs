@@ -9,6 +9,7 @@ use std::fmt;
 use super::candidate::Side;
 use super::constraints::{Breach, ConstraintSet};
 use super::control_points::ControlPointFailure;
+use super::family::{Family, FamilyGroup, FamilyRegions, KnotSet};
 use super::method::{
     EditContext, EditSolution, MethodFailure, MethodKind, MethodMembership, MethodNearest,
     Reachable, RegionKey, WeightRegion,
@@ -178,6 +179,9 @@ pub struct EditOutcome {
     /// The knot pairs' candidates, with membership of the requested pairs (`contains` exactly
     /// when a kept solution has that side and pair); empty unless the knot method ran.
     pub candidates: Vec<CandidateOutcome>,
+    /// Every requested knot family with the membership of its pairs or triples (`contains`
+    /// exactly when a kept solution moves those knots); empty unless the knot method ran.
+    pub families: Vec<FamilyGroup>,
     /// Weight pairs active at `t`, when the weight method ran.
     pub weight_pairs: Option<Vec<WeightPairMembership>>,
     /// The kept control-point move's changed poles, when the method ran: `Some(None)` when it
@@ -295,6 +299,7 @@ pub fn edit(
     let blocked = blocker(edit.constraints);
     let mut outcome = EditOutcome {
         candidates: Vec::new(),
+        families: Vec::new(),
         weight_pairs: None,
         control_points: None,
         solutions: Vec::new(),
@@ -343,19 +348,36 @@ pub fn edit(
         }
         let holds = |key: RegionKey| kept.iter().any(|s| s.region_key() == key);
         match found.membership {
-            MethodMembership::Candidates(candidates) => {
+            MethodMembership::Knots { candidates, groups } => {
                 knot_candidates = Some(
                     candidates
                         .into_iter()
                         .map(|mut entry| {
                             let side: Side = entry.candidate.side;
                             for region in &mut entry.regions {
-                                region.contains = holds(RegionKey::Knots(side, region.pair));
+                                region.contains = holds(RegionKey::Knots {
+                                    family: Family::Envelope,
+                                    side: Some(side),
+                                    knots: KnotSet::new(&region.knots),
+                                });
                             }
                             entry
                         })
                         .collect(),
                 );
+                outcome.families = groups
+                    .into_iter()
+                    .map(|mut group| {
+                        for member in &mut group.members {
+                            member.contains = holds(RegionKey::Knots {
+                                family: group.problem.family,
+                                side: group.problem.side,
+                                knots: member.knots,
+                            });
+                        }
+                        group
+                    })
+                    .collect();
             }
             MethodMembership::WeightPairs(pairs) => {
                 outcome.weight_pairs = Some(
@@ -389,17 +411,34 @@ pub fn edit(
     Ok(outcome)
 }
 
+/// Deviations within this relative difference of each other are near-ties: among them the
+/// better determined knot solution comes first.
+pub const NEAR_TIE: f64 = 1e-6;
+
 /// Measures every solution's deviation and sorts by it, smallest first (stable, so ties keep
-/// the order of the methods).
+/// the order of the methods); within a run of near-ties ([`NEAR_TIE`]), knot solutions by
+/// their conditioning, best first (the other methods' solutions count as well determined).
 fn measure_and_rank(curve: &crate::spline::Curve, solutions: &mut [EditSolution]) {
     for solution in solutions.iter_mut() {
         let method = solution.detail.method().method();
         solution.max_deviation = Some(method.deviation(curve, solution));
     }
-    solutions.sort_by(|p, q| {
-        let key = |s: &EditSolution| s.max_deviation.unwrap_or(f64::INFINITY);
-        key(p).total_cmp(&key(q))
-    });
+    let key = |s: &EditSolution| s.max_deviation.unwrap_or(f64::INFINITY);
+    solutions.sort_by(|p, q| key(p).total_cmp(&key(q)));
+    let conditioning = |s: &EditSolution| match s.detail {
+        super::SolutionDetail::Knots { conditioning, .. } => conditioning,
+        _ => f64::INFINITY,
+    };
+    let mut start = 0;
+    while start < solutions.len() {
+        let first = key(&solutions[start]);
+        let mut end = start + 1;
+        while end < solutions.len() && key(&solutions[end]) - first <= NEAR_TIE * first.abs() {
+            end += 1;
+        }
+        solutions[start..end].sort_by(|p, q| conditioning(q).total_cmp(&conditioning(p)));
+        start = end;
+    }
 }
 
 /// The nearest reachable point over the requested methods that have one (module docs).
@@ -455,6 +494,8 @@ pub struct ReachableRegions {
     /// The knot pairs' candidates with their regions, cut to what `keep_domain` allows (empty
     /// unless the knot method is requested).
     pub candidates: Vec<CandidateRegions>,
+    /// Every requested knot family's regions (empty unless the knot method is requested).
+    pub families: Vec<FamilyRegions>,
     /// The weight pairs' quadrilaterals, when the weight method is requested (pairs with a
     /// fixed pole left out).
     pub weight_regions: Vec<WeightRegion>,
@@ -474,12 +515,19 @@ pub fn reachable_regions(
     validate(edit, methods)?;
     let mut regions = ReachableRegions {
         candidates: Vec::new(),
+        families: Vec::new(),
         weight_regions: Vec::new(),
     };
     for &kind in methods {
         match kind.method().reachable(edit, options) {
             Reachable::Everywhere => {}
-            Reachable::KnotRegions(candidates) => regions.candidates = candidates,
+            Reachable::KnotRegions {
+                candidates,
+                families,
+            } => {
+                regions.candidates = candidates;
+                regions.families = families;
+            }
             Reachable::WeightRegions(weight_regions) => regions.weight_regions = weight_regions,
         }
     }

@@ -8,6 +8,7 @@ use super::candidate::Side;
 use super::constraints::{ConstraintSet, FixedPoles};
 use super::control_points::{ControlPointFailure, PoleVariables};
 use super::deviation::max_deviation_of_moved_poles;
+use super::family::{Family, FamilyGroup, FamilyRegions, KnotSet};
 use super::pairs::KnotPair;
 use super::regions::{CandidateRegions, PolygonOptions};
 use super::solve::{CandidateOutcome, ShapeError, ShapeQuery};
@@ -18,7 +19,8 @@ use crate::spline::vector::Point;
 /// The ways to move a point.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum MethodKind {
-    /// Knot pairs Ω1–Ω6 (cubic curves).
+    /// Knots: the envelope pairs (Ω1–Ω6 on cubics), the direct pairs and triples, every
+    /// degree ≥ 2.
     Knots,
     /// The least-norm move of the free control points.
     ControlPoints,
@@ -71,16 +73,22 @@ pub struct EditContext<'a> {
 pub enum SolutionDetail {
     /// New knots.
     Knots {
-        /// The pair (region) that reaches the target.
-        pair: KnotPair,
-        /// Which knot moved to `t`.
-        side: Side,
-        /// The span `j`.
+        /// The family.
+        family: Family,
+        /// Ω1–Ω6 for a cubic's envelope pairs.
+        pair: Option<KnotPair>,
+        /// The envelope's side.
+        side: Option<Side>,
+        /// The span `j` of the family's problem.
         span: usize,
-        /// Full-vector index of the knot set to `t`.
-        moved_knot: usize,
+        /// The envelope's knot set to `t` (full index).
+        moved_knot: Option<usize>,
+        /// The pair's or triple's knots (full indices).
+        knots_moved: KnotSet,
         /// Full-vector indices whose values changed, ascending.
         changed_knots: Vec<usize>,
+        /// How well the solution is determined ([`super::family::KnotSolution::conditioning`]).
+        conditioning: f64,
     },
     /// New control points.
     ControlPoints {
@@ -127,8 +135,15 @@ pub struct EditSolution {
 /// Which part of a method's reachable set a solution belongs to, for membership answers.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum RegionKey {
-    /// A knot pair of a side.
-    Knots(Side, KnotPair),
+    /// A pair or triple of a knot family (and side, for the envelope).
+    Knots {
+        /// The family.
+        family: Family,
+        /// The envelope's side.
+        side: Option<Side>,
+        /// The knots it moves.
+        knots: KnotSet,
+    },
     /// A weight pair.
     Weights([usize; 2]),
     /// The control-point move (one answer).
@@ -139,7 +154,16 @@ impl EditSolution {
     /// The region (pair) of its method that holds the target.
     pub fn region_key(&self) -> RegionKey {
         match self.detail {
-            SolutionDetail::Knots { side, pair, .. } => RegionKey::Knots(side, pair),
+            SolutionDetail::Knots {
+                family,
+                side,
+                knots_moved,
+                ..
+            } => RegionKey::Knots {
+                family,
+                side,
+                knots: knots_moved,
+            },
             SolutionDetail::Weights { poles, .. } => RegionKey::Weights(poles),
             SolutionDetail::ControlPoints { .. } => RegionKey::ControlPoints,
         }
@@ -168,8 +192,14 @@ pub struct MethodSolutions {
 /// The parts of a method's reachable set that a membership answer lists.
 #[derive(Debug, Clone, PartialEq)]
 pub enum MethodMembership {
-    /// Knot pairs: the candidates of the requested sides, each with its requested pairs.
-    Candidates(Vec<CandidateOutcome>),
+    /// Knots: the cubic's envelope candidates of the requested sides (each with its
+    /// requested pairs), and every requested family with its pairs or triples.
+    Knots {
+        /// The cubic's envelope candidates (empty on other degrees).
+        candidates: Vec<CandidateOutcome>,
+        /// The families.
+        groups: Vec<FamilyGroup>,
+    },
     /// Weights: every pair of poles active at `t`.
     WeightPairs(Vec<[usize; 2]>),
     /// The control-point move: one answer.
@@ -192,8 +222,14 @@ pub struct WeightRegion {
 pub enum Reachable {
     /// Every target (the control-point move, when its system is solvable).
     Everywhere,
-    /// The knot pairs' regions of each requested side (with `keep_domain` applied).
-    KnotRegions(Vec<CandidateRegions>),
+    /// The knot families' regions (with `keep_domain` applied): a cubic's envelope
+    /// candidates in their original form, and every family's pairs.
+    KnotRegions {
+        /// The cubic's envelope candidates (empty on other degrees).
+        candidates: Vec<CandidateRegions>,
+        /// Every requested family.
+        families: Vec<FamilyRegions>,
+    },
     /// Each weight pair's quadrilateral.
     WeightRegions(Vec<WeightRegion>),
 }

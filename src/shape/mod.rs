@@ -15,6 +15,7 @@ mod constraints;
 pub mod control_points;
 mod deviation;
 mod edit;
+pub mod family;
 mod fixed_poles;
 mod knot_method;
 mod least_norm;

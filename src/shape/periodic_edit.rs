@@ -32,6 +32,7 @@ use super::edit::{
     EditOptions, EditOutcome, Exclusion, ExclusionReason, ReachableRegions, WeightPairMembership,
     edit, reachable_regions,
 };
+use super::family::{Family, KnotSet};
 use super::method::{EditContext, EditSolution, MethodKind, RegionKey, SolutionDetail};
 use super::regions::PolygonOptions;
 use super::solve::{ShapeError, ShapeQuery};
@@ -98,6 +99,12 @@ impl WindowEdit {
     /// The periodic knot index of window knot `i`.
     fn knot(&self, i: usize) -> usize {
         self.window.periodic_knot_index(i)
+    }
+
+    /// A window knot set in periodic indices (in the window's order).
+    fn knot_set(&self, set: KnotSet) -> KnotSet {
+        let indices: Vec<usize> = set.indices().iter().map(|&i| self.knot(i)).collect();
+        KnotSet::new(&indices)
     }
 
     /// The periodic control point index of window control point `k`.
@@ -181,21 +188,27 @@ impl WindowEdit {
         }
         let detail = match solution.detail {
             SolutionDetail::Knots {
+                family,
                 pair,
                 side,
                 span,
                 moved_knot,
+                knots_moved,
                 changed_knots,
+                conditioning,
             } => {
                 let mut changed: Vec<usize> = changed_knots.iter().map(|&i| self.knot(i)).collect();
                 changed.sort_unstable();
                 changed.dedup();
                 SolutionDetail::Knots {
+                    family,
                     pair,
                     side,
                     span: self.knot(span),
-                    moved_knot: self.knot(moved_knot),
+                    moved_knot: moved_knot.map(|i| self.knot(i)),
+                    knots_moved: self.knot_set(knots_moved),
                     changed_knots: changed,
+                    conditioning,
                 }
             }
             SolutionDetail::ControlPoints {
@@ -250,10 +263,32 @@ impl WindowEdit {
                 entry.candidate.span = self.knot(entry.candidate.span);
                 entry.candidate.moved_knot = self.knot(entry.candidate.moved_knot);
                 for region in &mut entry.regions {
+                    let knots = self.knot_set(KnotSet::new(&region.knots));
                     region.knots = region.knots.map(|i| self.knot(i));
-                    region.contains = holds(RegionKey::Knots(entry.candidate.side, region.pair));
+                    region.contains = holds(RegionKey::Knots {
+                        family: Family::Envelope,
+                        side: Some(entry.candidate.side),
+                        knots,
+                    });
                 }
                 entry
+            })
+            .collect();
+        let families = outcome
+            .families
+            .into_iter()
+            .map(|mut group| {
+                group.problem.span = self.knot(group.problem.span);
+                group.problem.moved_knot = group.problem.moved_knot.map(|i| self.knot(i));
+                for member in &mut group.members {
+                    member.knots = self.knot_set(member.knots);
+                    member.contains = holds(RegionKey::Knots {
+                        family: group.problem.family,
+                        side: group.problem.side,
+                        knots: member.knots,
+                    });
+                }
+                group
             })
             .collect();
         let weight_pairs = outcome.weight_pairs.map(|pairs| {
@@ -286,6 +321,7 @@ impl WindowEdit {
         });
         EditOutcome {
             candidates,
+            families,
             weight_pairs,
             control_points,
             solutions,
@@ -343,6 +379,13 @@ pub(super) fn reachable_regions_periodic(
             entry.candidate.moved_knot = window.knot(entry.candidate.moved_knot);
             for region in &mut entry.regions {
                 region.knots = region.knots.map(|i| window.knot(i));
+            }
+        }
+        for family in &mut regions.families {
+            family.problem.span = window.knot(family.problem.span);
+            family.problem.moved_knot = family.problem.moved_knot.map(|i| window.knot(i));
+            for region in &mut family.regions {
+                region.knots = window.knot_set(region.knots);
             }
         }
         for region in &mut regions.weight_regions {

@@ -10,11 +10,16 @@ use crate::spline::{Curve, Dimension};
 /// Why a shape request cannot be answered.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum ShapeError {
-    /// The method is for cubic curves only.
+    /// The method is for cubic curves only (the envelope pairs Ω1–Ω6 of §4).
     #[error(
         "the knot-pair method (\"knots\") needs a cubic curve (degree 3), not degree {degree}; the \"control_points\" and \"weights\" methods take any degree"
     )]
     NotCubic { degree: usize },
+    /// Knots cannot move a point of a degree-1 curve.
+    #[error(
+        "the knot method (\"knots\") needs degree 2 or more: a degree-1 curve is the polyline of its control points, whose shape does not depend on its knots; the \"control_points\" and \"weights\" methods take degree 1"
+    )]
+    DegreeOne,
     /// The picked parameter is not a finite number.
     #[error("the parameter is not a finite number")]
     NonFiniteParameter,
@@ -46,7 +51,7 @@ impl ShapeError {
     /// The element of the request that is at fault.
     pub fn field(&self) -> ShapeField {
         match *self {
-            ShapeError::NotCubic { .. } => ShapeField::Degree,
+            ShapeError::NotCubic { .. } | ShapeError::DegreeOne => ShapeField::Degree,
             ShapeError::NonFiniteParameter | ShapeError::ParameterOutsideDomain { .. } => {
                 ShapeField::Parameter
             }
@@ -68,6 +73,9 @@ pub struct ShapeQuery<'a> {
     pub side: SideChoice,
     /// The knot pairs to try.
     pub pairs: &'a [KnotPair],
+    /// The knot families to try (docs/method.md §31); the cubic's envelope pairs are the
+    /// ones of `pairs`.
+    pub families: crate::shape::family::FamilyChoice,
     /// Drop solutions that change `u_{k-1}` or `u_{n+1}` (docs/method.md §6),
     /// or that move a knot onto a clamped end (which moves the end point just the same).
     pub keep_domain: bool,
@@ -82,6 +90,7 @@ impl<'a> ShapeQuery<'a> {
             parameter: curve.snap_to_domain(parameter).unwrap_or(parameter),
             side: SideChoice::Both,
             pairs: &KnotPair::ALL,
+            families: crate::shape::family::FamilyChoice::Default,
             keep_domain: true,
         }
     }

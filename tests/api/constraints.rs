@@ -357,16 +357,19 @@ async fn contradictory_constraints_and_impossible_ones_are_answers_not_errors() 
     );
 }
 
+/// A degree-1 curve is the polyline of its control points: knots cannot change it, and the
+/// 422 says which methods take it; a quintic is edited by knots (every family applies).
 #[tokio::test]
-async fn knots_on_a_non_cubic_say_which_methods_take_it() {
+async fn knots_on_a_polyline_say_which_methods_take_it() {
     let app = spawn_app().await;
-    let curve = quintic();
+    let polyline = json!({"degree": 1, "control_points": [[0, 0, 0], [1, 1, 0], [2, 0, 1], [3, 1, 1]],
+                          "knots": [0, 0, 0.3, 0.6, 1, 1]});
     for (path, extra) in [
         ("/v1/shape/solve", json!({"target": [1.0, 1.0, 1.0]})),
         ("/v1/shape/membership", json!({"target": [1.0, 1.0, 1.0]})),
         ("/v1/shape/regions", json!({})),
     ] {
-        let mut request = json!({"curve": curve.to_json(false), "parameter": 0.5});
+        let mut request = json!({"curve": polyline, "parameter": 0.5});
         for (key, value) in extra.as_object().unwrap() {
             request[key] = value.clone();
         }
@@ -375,12 +378,31 @@ async fn knots_on_a_non_cubic_say_which_methods_take_it() {
         assert_problem(422, &body, Some("/curve/degree"));
         let detail = body["errors"][0]["detail"].as_str().unwrap();
         assert!(
-            detail.contains("control_points") && detail.contains("weights"),
+            detail.contains("control_points")
+                && detail.contains("weights")
+                && detail.contains("polyline"),
             "{detail}"
         );
         request["methods"] = json!(["weights"]);
         let (status, body) = app.post_json(path, &request).await;
         assert_eq!(status, 200, "{path} with weights: {body}");
+        // The quintic takes knots: its families are answered.
+        let mut quintic_request = json!({"curve": quintic().to_json(false), "parameter": 0.5});
+        for (key, value) in extra.as_object().unwrap() {
+            quintic_request[key] = value.clone();
+        }
+        let (status, body) = app.post_json(path, &quintic_request).await;
+        assert_eq!(status, 200, "{path} on a quintic: {body}");
+        let families: Vec<&str> = body["families"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|f| f["family"].as_str().unwrap())
+            .collect();
+        assert!(
+            families.contains(&"envelope") && families.contains(&"direct"),
+            "{path}: {families:?}"
+        );
     }
 }
 

@@ -6,7 +6,7 @@
 use serde_json::{Value, json};
 
 use crate::helpers::{assert_problem, numbers, spawn_app};
-use crate::reference::{ReferenceCurve, cubic_2d, distance, rational_3d};
+use crate::reference::{Lcg, ReferenceCurve, cubic_2d, distance, rational_3d};
 
 /// Same-curve comparisons (coordinates ~10).
 const SAME_TOL: f64 = 1e-11;
@@ -28,6 +28,105 @@ fn is_trimmed(curve: &Value) -> bool {
     let n = curve["control_points"].as_array().unwrap().len();
     let p = curve["degree"].as_u64().unwrap() as usize;
     curve["knots"].as_array().unwrap().len() == n + p - 1
+}
+
+/// The values of issue 30's report: inserted into a degree-4 curve, each comes out as often
+/// as it went in with tolerance 0, whether the removal lists the distinct values once, the
+/// inserted list, or nothing.
+const REPORTED_INSERTIONS: [f64; 7] = [
+    0.179589, 0.179589, 0.289034, 0.289034, 0.378234, 0.801368, 0.801368,
+];
+
+/// A random curve of degree `degree` with `count` control points on `[0, 1]`: clamped or
+/// not, 2D or 3D, rational or not.
+fn random_curve(
+    random: &mut Lcg,
+    degree: usize,
+    count: usize,
+    clamped: bool,
+    dimension: usize,
+    rational: bool,
+) -> ReferenceCurve {
+    let points: Vec<Vec<f64>> = (0..count)
+        .map(|_| {
+            (0..dimension)
+                .map(|_| random.between(-10.0, 10.0))
+                .collect()
+        })
+        .collect();
+    let mut knots: Vec<f64> = if clamped {
+        let mut interior: Vec<f64> = (0..count - degree - 1).map(|_| random.unit()).collect();
+        interior.sort_by(f64::total_cmp);
+        [vec![0.0; degree + 1], interior, vec![1.0; degree + 1]].concat()
+    } else {
+        // The domain [u_p, u_n] is [0, 1]; the knots outside it spread below and above.
+        let mut inside: Vec<f64> = (0..count - degree - 1).map(|_| random.unit()).collect();
+        inside.sort_by(f64::total_cmp);
+        let below: Vec<f64> = (0..degree).map(|k| -0.1 * (degree - k) as f64).collect();
+        let above: Vec<f64> = (1..=degree).map(|k| 1.0 + 0.1 * k as f64).collect();
+        [below, vec![0.0], inside, vec![1.0], above].concat()
+    };
+    knots.sort_by(f64::total_cmp);
+    let weights = rational.then(|| (0..count).map(|_| random.between(0.3, 3.0)).collect());
+    ReferenceCurve {
+        degree,
+        points,
+        knots,
+        weights,
+    }
+}
+
+#[tokio::test]
+async fn repeated_insertions_come_out_again_at_tolerance_0() {
+    let app = spawn_app().await;
+    let mut random = Lcg(30);
+    let mut distinct = REPORTED_INSERTIONS.to_vec();
+    distinct.dedup();
+    let mut cases = 0;
+    for degree in 3..=5 {
+        for (clamped, trimmed, dimension, rational) in [
+            (true, false, 3, false),
+            (false, true, 3, true),
+            (true, true, 2, true),
+            (false, false, 2, false),
+        ] {
+            let count = degree + 1 + 4;
+            let curve = random_curve(&mut random, degree, count, clamped, dimension, rational);
+            let wire = curve.to_json(trimmed);
+            let (status, refined) = app
+                .post_json(
+                    "/v1/curves/insert-knots",
+                    &json!({"curve": wire, "knots": REPORTED_INSERTIONS}),
+                )
+                .await;
+            assert_eq!(status, 200, "{refined}");
+            for listed in [json!(distinct), json!(REPORTED_INSERTIONS), Value::Null] {
+                let mut request = json!({"curve": refined["curve"], "tolerance": 0});
+                if !listed.is_null() {
+                    request["knots"] = listed.clone();
+                }
+                let (status, body) = app.post_json("/v1/curves/remove-knots", &request).await;
+                assert_eq!(status, 200, "{body}");
+                let case = format!(
+                    "degree {degree}, clamped {clamped}, trimmed {trimmed}, listed {listed}"
+                );
+                assert_eq!(numbers(&body["removed"]), REPORTED_INSERTIONS, "{case}");
+                assert!(
+                    body["max_deviation"].as_f64().unwrap() < 1e-12,
+                    "{case}: {body}"
+                );
+                assert_eq!(is_trimmed(&body["curve"]), trimmed, "{case}");
+                let back = ReferenceCurve::from_json(&body["curve"]);
+                assert_eq!(back.to_json(trimmed)["knots"], wire["knots"], "{case}");
+                assert!(
+                    largest_gap(&curve, &back, &grid(&curve)) < SAME_TOL,
+                    "{case}"
+                );
+                cases += 1;
+            }
+        }
+    }
+    assert_eq!(cases, 3 * 4 * 3);
 }
 
 #[tokio::test]

@@ -301,13 +301,13 @@ async fn broken_rules_are_422_with_pointers() {
 
     let target = json!([4.7, 3.3]);
     for path in ["/v1/shape/solve", "/v1/shape/membership"] {
-        let mut quadratic = curve();
-        quadratic["degree"] = json!(2);
-        quadratic["knots"].as_array_mut().unwrap().pop();
+        // Knots do not move a degree-1 curve (the polyline of its control points).
+        let polyline = json!({"degree": 1, "control_points": [[0, 0], [1, 2], [3, 2], [4, 0]],
+                              "knots": [0, 0, 0.3, 0.7, 1, 1]});
         expect_422(
             &app,
             path,
-            json!({"curve": quadratic, "parameter": 0.4, "target": target}),
+            json!({"curve": polyline, "parameter": 0.4, "target": target}),
             "/curve/degree",
         )
         .await;

@@ -1,7 +1,8 @@
-//! Every request body in `examples/` (the README's curl examples) posted to the real server:
-//! a 200 with a sensible body. A file `<group>-<endpoint>[-variant].json` goes to
-//! `/v1/<group>/<endpoint>` (the longest documented route that the name starts with, so
-//! `curves-closest-point.json` goes to `/v1/curves/closest-point`).
+//! Every request body in `examples/` (the curl examples of README.md and docs/api.md) posted
+//! to the real server: a 200 with a sensible body. A file
+//! `<group>-<endpoint>[-variant].json` goes to `/v1/<group>/<endpoint>` (the longest documented
+//! route that the name starts with, so `curves-closest-point.json` goes to
+//! `/v1/curves/closest-point`).
 
 use serde_json::Value;
 
@@ -37,6 +38,12 @@ fn check_sensible(path: &str, request: &Value, body: &Value) {
                 .iter()
                 .flat_map(|c| c["regions"].as_array().unwrap())
                 .any(|r| r["contains"] == true)
+                || body["families"]
+                    .as_array()
+                    .unwrap()
+                    .iter()
+                    .flat_map(|f| f["pairs"].as_array().unwrap())
+                    .any(|r| r["contains"] == true)
                 || body["control_points"]["contains"] == true
                 || body["weights"]["contains"] == true;
             assert_eq!(body["reachable"], any);
@@ -54,6 +61,18 @@ fn check_sensible(path: &str, request: &Value, body: &Value) {
                 let polygon = points(&region["polygon"]);
                 assert!(polygon.len() >= 4);
                 assert_eq!(polygon.first(), polygon.last());
+            }
+            for region in body["families"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .flat_map(|f| f["regions"].as_array().unwrap())
+            {
+                for ring in region["polygons"].as_array().unwrap() {
+                    let ring = points(ring);
+                    assert!(ring.len() >= 4);
+                    assert_eq!(ring.first(), ring.last());
+                }
             }
         }
         "/v1/shape/solve" if request["nearest"] == true => {

@@ -280,3 +280,40 @@ async fn approximation_rules_are_422s_with_pointers() {
         assert_problem(422, &body, Some(pointer));
     }
 }
+
+/// The end-tangent rule (degree 2 or more, open curves) is in the OpenAPI document, where a
+/// client reads it before calling, and the server keeps to what it says: a tangent with
+/// degree 1 is a 422 at `/end_tangents`, no tangent (`[null, null]`) at degree 1 and a
+/// tangent at degree 2 are not.
+#[tokio::test]
+async fn the_end_tangent_rule_is_stated_in_the_schema() {
+    let document: Value = serde_json::from_str(&knotshape::openapi_json()).unwrap();
+    let properties = &document["components"]["schemas"]["InterpolateRequest"]["properties"];
+    let tangents = properties["end_tangents"]["description"].as_str().unwrap();
+    for needed in [
+        "`degree` ≥ 2",
+        "`degree: 1`",
+        "`closed: true`",
+        "422 at `/end_tangents`",
+    ] {
+        assert!(tangents.contains(needed), "{needed:?} not in {tangents:?}");
+    }
+    let degree = properties["degree"]["description"].as_str().unwrap();
+    assert!(
+        degree.contains("at least 2 when an end tangent is given"),
+        "{degree}"
+    );
+    let app = spawn_app().await;
+    let post = |degree: usize, tangents: Value| json!({"points": zigzag(5), "degree": degree, "end_tangents": tangents});
+    let (status, body) = app
+        .post_json("/v1/curves/interpolate", &post(1, json!([null, [0, 1]])))
+        .await;
+    assert_eq!(status, 422, "{body}");
+    assert_problem(422, &body, Some("/end_tangents"));
+    for (degree, tangents) in [(1, json!([null, null])), (2, json!([[1, 0], null]))] {
+        let (status, body) = app
+            .post_json("/v1/curves/interpolate", &post(degree, tangents))
+            .await;
+        assert_eq!(status, 200, "{body}");
+    }
+}

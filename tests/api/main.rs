@@ -2,6 +2,7 @@
 //! it links once. Set `TEST_LOG=1` (or a filter such as `TEST_LOG=knotshape=debug`) for logs.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
+mod answer_schemas;
 mod auth;
 mod binary;
 mod closest;

@@ -149,7 +149,8 @@ async fn knot_regions_under_an_inner_pin_are_reached_and_the_ones_left_out_move_
     for (side, region, polygon) in left_out {
         for target in inner_points(polygon, 2) {
             let request = json!({"curve": curve.to_json(false), "parameter": T, "target": target,
-                                 "side": side, "regions": [region], "methods": ["knots"]});
+                                 "side": side, "regions": [region], "methods": ["knots"],
+                                 "knot_families": ["envelope"]});
             let (status, answer) = app.post_json("/v1/shape/solve", &request).await;
             assert_eq!(status, 200, "{answer}");
             let solution = &answer["solutions"][0];

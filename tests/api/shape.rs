@@ -153,9 +153,14 @@ async fn solve_recovers_the_knots_that_made_a_target_and_every_solution_hits_it(
             assert!(
                 distance(&points(&json!([solution["point"]]))[0], &target) < REPRODUCTION_TOLERANCE
             );
-            // The moved knot is at t, and changed_knots lists exactly the changed values.
-            let moved = solution["moved_knot"].as_u64().unwrap() as usize;
-            assert_eq!(knots[moved], t);
+            // The envelope's moved knot is at t (the direct pairs move no knot to t), and
+            // changed_knots lists exactly the changed values.
+            if let Some(moved) = solution["moved_knot"].as_u64() {
+                assert_eq!(solution["family"], "envelope", "{solution}");
+                assert_eq!(knots[moved as usize], t);
+            } else {
+                assert_ne!(solution["family"], "envelope", "{solution}");
+            }
             let changed: Vec<usize> = (0..knots.len())
                 .filter(|&i| knots[i] != curve.knots[i])
                 .collect();
@@ -296,9 +301,31 @@ async fn the_worked_examples_are_reproduced_over_http() {
     let examples: Value = serde_json::from_str(include_str!("../data/examples.json")).unwrap();
     for example in examples["examples"].as_array().unwrap() {
         let note = example["note"].as_str().unwrap();
-        let request = json!({"curve": example["curve"], "parameter": example["parameter"], "target": example["target"]});
+        // The cubic's envelope pairs alone give exactly the worked answer; every family (the
+        // default) gives it too, among the other families' solutions.
+        let mut request = json!({"curve": example["curve"], "parameter": example["parameter"], "target": example["target"],
+                                 "knot_families": ["envelope"]});
         let (status, body) = app.post_json("/v1/shape/solve", &request).await;
         assert_eq!(status, 200, "{note}: {body}");
+        request.as_object_mut().unwrap().remove("knot_families");
+        let (status, every_family) = app.post_json("/v1/shape/solve", &request).await;
+        assert_eq!(status, 200, "{note}: {every_family}");
+        for solution in body["solutions"].as_array().unwrap() {
+            let same = every_family["solutions"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .any(|s| {
+                    s["region"] == solution["region"]
+                        && s["side"] == solution["side"]
+                        && s["knots"] == solution["knots"]
+                });
+            assert!(
+                same,
+                "{note}: {solution} missing from the answer with every family"
+            );
+        }
+        assert_eq!(every_family["candidates"], body["candidates"], "{note}");
         let candidates = body["candidates"].as_array().unwrap();
         let mut expected_solutions = 0;
         for expected in example["expected"]["candidates"].as_array().unwrap() {

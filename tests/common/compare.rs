@@ -146,6 +146,7 @@ pub fn compare_with_search(
         parameter: t,
         side: SideChoice::Both,
         pairs: &KnotPair::ALL,
+        families: Default::default(),
         keep_domain,
     };
     let outcome = membership(&query, coordinates).unwrap();

@@ -182,7 +182,7 @@ fn random_knots(
 /// (right end as the limit from the left): written here so that solutions are checked by an
 /// evaluator outside the crate, too. `None` when the domain is empty.
 pub fn de_boor(curve: &Curve, knots: &[f64], t: f64) -> Option<Point> {
-    let p = 3;
+    let p = curve.degree();
     let n = curve.control_points().len() - 1;
     if knots[p] >= knots[n + 1] {
         return None;

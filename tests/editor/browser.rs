@@ -1,6 +1,7 @@
 //! A headless Chromium session for one test: chromedriver started on a free port, Chromium
 //! with a fresh profile directory, both ended (and the profile removed) on drop — also when
-//! the test panicked and never closed the session.
+//! the test panicked and never closed the session. Sessions run side by side, except one
+//! started [`Browser::start_alone`] (the drag timings), which waits until it is the only one.
 
 use std::net::TcpListener;
 use std::path::{Path, PathBuf};
@@ -9,6 +10,17 @@ use std::time::{Duration, Instant};
 
 use fantoccini::{Client, ClientBuilder};
 use serde_json::json;
+use tokio::sync::{RwLock, RwLockReadGuard, RwLockWriteGuard};
+
+/// Held shared by every session, and alone by a timing session: the test harness runs tests
+/// in parallel, and a drag timed beside another test's browser measures that test too.
+static SESSIONS: RwLock<()> = RwLock::const_new(());
+
+/// A session's hold on [`SESSIONS`].
+enum Hold {
+    Shared(#[allow(dead_code)] RwLockReadGuard<'static, ()>),
+    Alone(#[allow(dead_code)] RwLockWriteGuard<'static, ()>),
+}
 
 /// Debian's Chromium and its WebDriver.
 pub const CHROMIUM: &str = "/usr/bin/chromium";
@@ -22,12 +34,24 @@ pub struct Browser {
     pub client: Client,
     driver: Child,
     profile: PathBuf,
+    /// Released when the session ends (after the browser is gone).
+    _hold: Hold,
 }
 
 impl Browser {
     /// Starts chromedriver and a headless Chromium. Panics, saying how to install them,
     /// when either is missing.
     pub async fn start() -> Browser {
+        Browser::launch(Hold::Shared(SESSIONS.read().await)).await
+    }
+
+    /// As [`Browser::start`], once no other session is running, and none starts until this
+    /// one ends.
+    pub async fn start_alone() -> Browser {
+        Browser::launch(Hold::Alone(SESSIONS.write().await)).await
+    }
+
+    async fn launch(hold: Hold) -> Browser {
         for binary in [CHROMIUM, CHROMEDRIVER] {
             assert!(
                 std::path::Path::new(binary).exists(),
@@ -88,6 +112,7 @@ impl Browser {
             client,
             driver,
             profile,
+            _hold: hold,
         }
     }
 

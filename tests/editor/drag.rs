@@ -35,18 +35,21 @@ async fn pick_drag_into_a_region_commit_undo_redo_and_drag_outside_onto_nearest(
     let original = sample();
     assert_eq!(numbers(&page.curve().await), numbers(&original));
 
-    // Zoomed in about the point (the wheel), then picked: the regions of both sides appear,
-    // with the control triangles and a legend.
+    // Zoomed in about the point (the wheel), then picked: the envelope's regions of both
+    // sides appear, with the control triangles, and the direct pairs' regions, with a legend
+    // of each family (the envelope's Ω colours, a tint per direct pair).
     let at = page.to_screen(point_at(&app, &original, 0.42).await).await;
     page.wheel_at(at, -350).await;
     page.settle().await;
     let (t, dot) = pick(&page, &app, &original, 0.42).await;
     let drawn = page
         .run(
-            "return [document.querySelectorAll('#scene polygon.region[data-side=left]').length, \
-             document.querySelectorAll('#scene polygon.region[data-side=right]').length, \
+            "return [document.querySelectorAll('#scene path.region[data-side=left]').length, \
+             document.querySelectorAll('#scene path.region[data-side=right]').length, \
              document.querySelectorAll('#scene polygon.triangle').length, \
-             document.querySelectorAll('#legend .swatch').length];",
+             document.querySelectorAll('#families [data-family=envelope] .pair-swatch').length, \
+             document.querySelectorAll('#scene path.region[data-family=direct]').length, \
+             document.querySelectorAll('#families [data-family=direct] .pair-swatch').length];",
             vec![],
         )
         .await;
@@ -55,7 +58,10 @@ async fn pick_drag_into_a_region_commit_undo_redo_and_drag_outside_onto_nearest(
         "{drawn}"
     );
     assert_eq!(drawn[2], json!(2), "{drawn}");
-    assert!(drawn[3].as_u64().unwrap() >= 6, "{drawn}");
+    // Right Ω1, Ω2, Ω4 and left Ω2, Ω3, Ω6: five colours.
+    assert_eq!(drawn[3], json!(5), "{drawn}");
+    assert!(drawn[4].as_u64().unwrap() > 0, "{drawn}");
+    assert_eq!(drawn[4], drawn[5], "{drawn}");
 
     // Drag into a region in one move: the committed curve is the API's smallest-deviation
     // solution for the same request, and passes through the target.
@@ -249,8 +255,8 @@ async fn a_single_bezier_gets_knots_inserted_and_then_drags() {
     let exported: Value = serde_json::from_str(exported.as_str().unwrap()).unwrap();
     assert_eq!(numbers(&exported), numbers(&rational));
 
-    // A 3D curve: shown in projection, the knot pairs off (the checkbox disabled, a note);
-    // a click picks its point (moving it is in the `third_release` tests).
+    // A 3D curve: shown in projection, the knots on, with a note saying how it is edited; a
+    // click picks its point (moving it is in the `families` and `third_release` tests).
     let spatial = json!({"degree": 3, "control_points": [[0, 0, 0], [1, 2, 1], [3, 2, 2], [4, 0, 3]],
                          "knots": [0, 0, 0, 0, 1, 1, 1, 1]});
     paste(&page, &spatial).await;
@@ -262,11 +268,16 @@ async fn a_single_bezier_gets_knots_inserted_and_then_drags() {
     assert_eq!(picked["point"].as_array().unwrap().len(), 3, "{picked}");
     let knots_off = page
         .run(
-            "return document.getElementById('method-knots').disabled;",
+            "return [document.getElementById('method-knots').disabled, \
+             document.getElementById('methods-note').textContent];",
             vec![],
         )
         .await;
-    assert_eq!(knots_off, json!(true));
+    assert_eq!(knots_off[0], json!(false), "{knots_off}");
+    assert!(
+        knots_off[1].as_str().unwrap().contains("keeps its z"),
+        "{knots_off}"
+    );
 
     // Broken JSON and a curve the API refuses: readable messages, the page keeps working.
     page.run(

@@ -329,6 +329,12 @@ impl<'a> Page<'a> {
         [value[0].as_f64().unwrap(), value[1].as_f64().unwrap()]
     }
 
+    /// The target of the drag in progress, or of the last edit, as the page sent it (3
+    /// coordinates for a 3D curve).
+    pub async fn target_sent(&self) -> Vec<f64> {
+        serde_json::from_str(&self.data("target").await).expect("a target")
+    }
+
     /// The view's frame `{scale, offset, fitted}` (`body[data-frame]`).
     pub async fn frame(&self) -> Value {
         serde_json::from_str(&self.data("frame").await).expect("data-frame is JSON")

@@ -48,6 +48,7 @@ pub fn apply(curve: &Value, solution: &Value) -> Value {
     match solution["method"].as_str().unwrap() {
         "knots" => next["knots"] = solution["knots"].clone(),
         "control_points" => next["control_points"] = solution["control_points"].clone(),
+        "weights" => next["weights"] = solution["weights"].clone(),
         other => panic!("unknown method {other}"),
     }
     next
@@ -187,30 +188,45 @@ pub async fn pick(page: &Page<'_>, app: &TestApp, curve: &Value, t: f64) -> (f64
     (parameter, pixel)
 }
 
-/// The family `{method, side?, region?}` of a solution.
+/// The family of a solution as the page keeps it (`body[data-family]`): `{method}`, for
+/// knots also `family`, `region` and (the envelope's) `side`.
 pub fn family_of(solution: &Value) -> Value {
     match solution["method"].as_str().unwrap() {
         "knots" => {
-            json!({"method": "knots", "side": solution["side"], "region": solution["region"]})
+            let mut family = json!({"method": "knots", "family": solution["family"],
+                                    "region": solution["region"]});
+            if let Some(side) = solution.get("side").filter(|side| !side.is_null()) {
+                family["side"] = side.clone();
+            }
+            family
         }
         method => json!({"method": method}),
     }
 }
 
-/// The API's solution of `family` for the target (or the nearest reachable point of that
-/// family), asked as the page asks once a drag keeps a family.
+/// The API's solutions of `family` for the target (or for the nearest reachable point of
+/// that family), asked as the page asks once a drag keeps a family: a knot pair whose map
+/// folds has several, and the page commits the one its drag followed.
 pub async fn solve_family(
     app: &TestApp,
     curve: &Value,
     t: f64,
-    target: [f64; 2],
+    target: impl serde::Serialize,
     family: &Value,
-) -> Value {
+) -> Vec<Value> {
     let mut request = json!({"curve": curve, "parameter": t, "target": target, "side": "both",
                              "nearest": true, "methods": [family["method"]]});
     if family["method"] == "knots" {
-        request["side"] = family["side"].clone();
-        request["regions"] = json!([family["region"]]);
+        request["knot_families"] = json!([family["family"]]);
+        if let Some(side) = family.get("side") {
+            request["side"] = side.clone();
+        }
+        if family["region"]
+            .as_str()
+            .is_some_and(|region| region.starts_with("omega"))
+        {
+            request["regions"] = json!([family["region"]]);
+        }
     }
     let (status, body) = app.post_json("/v1/shape/solve", &request).await;
     assert_eq!(status, 200, "{body}");
@@ -220,11 +236,24 @@ pub async fn solve_family(
     } else {
         solutions
     };
-    solutions
+    let found: Vec<Value> = solutions
         .iter()
-        .find(|s| family_of(s) == *family)
+        .filter(|s| family_of(s) == *family)
         .cloned()
-        .unwrap_or_else(|| panic!("no solution of {family}: {body}"))
+        .collect();
+    assert!(!found.is_empty(), "no solution of {family}: {body}");
+    found
+}
+
+/// Asserts that `committed` is `curve` changed by one of `solutions`.
+pub fn assert_one_of(committed: &Value, curve: &Value, solutions: &[Value], what: &str) {
+    assert!(
+        solutions
+            .iter()
+            .any(|s| numbers(&apply(curve, s)) == numbers(committed)),
+        "{what}: the committed curve {committed} is none of {} solutions",
+        solutions.len()
+    );
 }
 
 /// A cubic with `n` control points along a wave, uniform knots (a large curve for the
@@ -242,9 +271,33 @@ pub fn many_poles(n: usize) -> Value {
     json!({"degree": 3, "control_points": points, "knots": knots})
 }
 
+/// The worked quintic of the fourth release (`benches/knot_families.rs`): 16 poles, ten
+/// interior knots.
+pub fn quintic() -> Value {
+    let mut knots = vec![0.0; 6];
+    knots.extend((0..10).map(|i| ((0.08 + 0.84 * f64::from(i) / 9.0) * 1e4).round() / 1e4));
+    knots.extend([1.0; 6]);
+    json!({"degree": 5, "control_points": [[0, 0], [1, 1.5], [2, 2.5], [3.2, 3], [4.5, 2.8],
+        [5.5, 1.8], [6.3, 0.6], [7.5, 0.2], [8.8, 0.9], [9.8, 2.2], [11, 3], [12.2, 2.6],
+        [13, 1.2], [14, 0], [15, 0.5], [16, 2]], "knots": knots})
+}
+
+/// The 3D cubic of `benches/knot_families.rs`: a helix-like polygon of eight poles, uniform
+/// clamped knots.
+pub fn helix() -> Value {
+    let points: Vec<Value> = (0..8)
+        .map(|i| {
+            let a = 0.9 * f64::from(i);
+            json!([3.0 * a.cos(), 3.0 * a.sin(), 0.8 * f64::from(i)])
+        })
+        .collect();
+    json!({"degree": 3, "control_points": points,
+           "knots": [0, 0, 0, 0, 0.2, 0.4, 0.6, 0.8, 1, 1, 1, 1]})
+}
+
 /// Saves a screenshot of the page as `target/<name>`; one `for_docs` also as
-/// `docs/pictures/<name>` when `UPDATE_PICTURES` is set (the README's pictures:
-/// `UPDATE_PICTURES=1 cargo test --test editor`).
+/// `docs/pictures/<name>` when `UPDATE_PICTURES` is set (the pictures of README.md and
+/// docs/editor.md: `UPDATE_PICTURES=1 cargo test --test editor`).
 pub async fn screenshot(client: &fantoccini::Client, name: &str, for_docs: bool) {
     let png = client.screenshot().await.expect("screenshot");
     std::fs::create_dir_all(target_dir()).unwrap();

@@ -10,34 +10,52 @@ use serde_json::{Value, json};
 
 use super::browser::Browser;
 use super::page::Page;
-use super::regions::{Polygon, points_inside, polygon};
+use super::regions::{Polygon, drawn_knot_regions, points_inside, points_inside_rings, polygon};
 use super::steps::{drag_target, numbers, paste, pick, point_at, sample};
 use crate::helpers::{TestApp, spawn_app};
 
-/// The drawn regions: (side, region, poles, polygon); weight regions have side "" and the
-/// pair's poles, knot-pair regions no poles.
-async fn drawn_regions(page: &Page<'_>) -> Vec<(String, String, String, Polygon)> {
+/// One drawn region: a knot pair's (its family, the envelope's side or "", its label) or a
+/// weight pair's (family "weights", region "weights", the pair's poles), with its rings.
+struct Drawn {
+    family: String,
+    side: String,
+    region: String,
+    poles: String,
+    rings: Vec<Polygon>,
+    /// How far its edges may be from the true boundary (0: the request's half pixel).
+    tolerance: f64,
+}
+
+/// The drawn regions: the knot pairs' paths, then the weight pairs' quadrilaterals.
+async fn drawn_regions(page: &Page<'_>) -> Vec<Drawn> {
+    let mut drawn: Vec<Drawn> = drawn_knot_regions(page)
+        .await
+        .into_iter()
+        .map(|r| Drawn {
+            family: r.family,
+            side: r.side,
+            region: r.region,
+            poles: String::new(),
+            rings: r.rings,
+            tolerance: r.tolerance,
+        })
+        .collect();
     let value = page
         .run(
-            "return [...document.querySelectorAll('#scene polygon.region')].map((p) => \
-             [p.dataset.side || '', p.dataset.region, p.dataset.poles || '', \
-              p.getAttribute('points').split(' ').map((xy) => xy.split(',').map(Number))]);",
+            "return [...document.querySelectorAll('#scene polygon.weight-region')].map((p) => \
+             [p.dataset.poles, p.getAttribute('points').split(' ').map((xy) => xy.split(',').map(Number))]);",
             vec![],
         )
         .await;
-    value
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|r| {
-            (
-                r[0].as_str().unwrap().to_owned(),
-                r[1].as_str().unwrap().to_owned(),
-                r[2].as_str().unwrap().to_owned(),
-                polygon(&r[3]),
-            )
-        })
-        .collect()
+    drawn.extend(value.as_array().unwrap().iter().map(|r| Drawn {
+        family: "weights".to_owned(),
+        side: String::new(),
+        region: "weights".to_owned(),
+        poles: r[0].as_str().unwrap().to_owned(),
+        rings: vec![polygon(&r[1])],
+        tolerance: 0.0,
+    }));
+    drawn
 }
 
 /// The page's conditions: its constraints (pins, tangent locks) and fixed control points.
@@ -61,7 +79,7 @@ async fn solved_by_region(
     target: [f64; 2],
     methods: &[&str],
     conditions: &Conditions<'_>,
-    (side, region, poles): (&str, &str, &str),
+    drawn: &Drawn,
 ) -> bool {
     let mut request = json!({"curve": curve, "parameter": t, "target": target, "side": "both",
                              "keep_domain": true, "methods": methods});
@@ -74,14 +92,17 @@ async fn solved_by_region(
     let (status, body) = app.post_json("/v1/shape/solve", &request).await;
     assert_eq!(status, 200, "{body}");
     body["solutions"].as_array().unwrap().iter().any(|s| {
-        if region == "weights" {
+        if drawn.family == "weights" {
             let pair: Vec<String> = s["poles"]
                 .as_array()
                 .map(|p| p.iter().map(|k| k.to_string()).collect())
                 .unwrap_or_default();
-            s["method"] == "weights" && pair.join(",") == poles
+            s["method"] == "weights" && pair.join(",") == drawn.poles
         } else {
-            s["method"] == "knots" && s["side"] == side && s["region"] == region
+            s["method"] == "knots"
+                && s["family"] == drawn.family.as_str()
+                && s["region"] == drawn.region.as_str()
+                && (drawn.side.is_empty() || s["side"] == drawn.side.as_str())
         }
     })
 }
@@ -97,29 +118,24 @@ async fn check_drawn_regions(
 ) -> (usize, usize) {
     let pixel = 1.0 / page.frame().await["scale"].as_f64().unwrap();
     let mut sampled = (0, 0);
-    for (side, region, poles, shape) in drawn_regions(page).await {
-        let points = points_inside(&shape, 4, pixel);
+    for drawn in drawn_regions(page).await {
+        let points = points_inside_rings(&drawn.rings, 4, pixel.max(drawn.tolerance));
         if points.is_empty() {
             continue;
         }
-        if region == "weights" {
+        if drawn.family == "weights" {
             sampled.1 += 1;
         } else {
             sampled.0 += 1;
         }
         for target in points {
             assert!(
-                solved_by_region(
-                    app,
-                    &sample(),
-                    t,
-                    target,
-                    methods,
-                    conditions,
-                    (&side, &region, &poles)
-                )
-                .await,
-                "t = {t}: {side} {region} {poles} drawn, but {target:?} is not solved by it"
+                solved_by_region(app, &sample(), t, target, methods, conditions, &drawn).await,
+                "t = {t}: {} {} {} {} drawn, but {target:?} is not solved by it",
+                drawn.family,
+                drawn.side,
+                drawn.region,
+                drawn.poles
             );
         }
     }
@@ -167,8 +183,8 @@ async fn drawn_knot_and_weight_regions_are_solved_by_the_pages_own_request() {
     let pairs: Vec<String> = drawn_regions(&page)
         .await
         .into_iter()
-        .filter(|r| r.1 == "weights")
-        .map(|r| r.2)
+        .filter(|r| r.family == "weights")
+        .map(|r| r.poles)
         .collect();
     assert_eq!(pairs, ["2,3", "2,5", "3,5"], "pairs without pole 4");
     let fixed = Conditions {
@@ -194,7 +210,7 @@ async fn drawn_knot_and_weight_regions_are_solved_by_the_pages_own_request() {
     let pairs: Vec<(String, String)> = drawn_regions(&page)
         .await
         .into_iter()
-        .map(|r| (r.1, r.2))
+        .map(|r| (r.region, r.poles))
         .collect();
     assert_eq!(pairs, [("weights".to_owned(), "2,3".to_owned())]);
     let pinned = Conditions {
@@ -210,7 +226,7 @@ async fn drawn_knot_and_weight_regions_are_solved_by_the_pages_own_request() {
     page.click_id("method-weights").await;
     page.settle().await;
     assert_eq!(count(&page, "#scene polygon.weight-region").await, 0);
-    assert!(count(&page, "#scene polygon.region").await > 0);
+    assert!(count(&page, "#scene path.region").await > 0);
     assert_eq!(page.script_errors().await, Vec::<String>::new());
     browser.close().await;
 }
@@ -266,9 +282,9 @@ async fn the_weights_method_drags_with_a_polyline_preview_and_commits_a_rational
     // A pixel well inside a drawn weight quadrilateral, away from the dot.
     let scale = page.frame().await["scale"].as_f64().unwrap();
     let mut aim = None;
-    for (_, region, _, shape) in drawn_regions(&page).await {
-        assert_eq!(region, "weights", "only weight regions are drawn");
-        for p in points_inside(&shape, 40, 4.0 / scale) {
+    for drawn in drawn_regions(&page).await {
+        assert_eq!(drawn.region, "weights", "only weight regions are drawn");
+        for p in points_inside(&drawn.rings[0], 40, 4.0 / scale) {
             let pixel = page.to_screen(p).await;
             let away = ((pixel.0 - dot.0).pow(2) + (pixel.1 - dot.1).pow(2)) as f64;
             if (400.0..6400.0).contains(&away) && aim.is_none() {
@@ -310,25 +326,43 @@ async fn the_weights_method_drags_with_a_polyline_preview_and_commits_a_rational
 }
 
 #[tokio::test]
-async fn points_of_quadratic_and_3d_curves_move_by_control_points() {
+async fn points_of_quadratic_and_3d_curves_move_by_control_points_and_polylines_have_no_knots() {
     let app = spawn_app().await;
     let browser = Browser::start().await;
     let page = Page::open(&browser.client, &app.address).await;
+    // A polyline's shape does not depend on its knots: the knots box is off, with a note.
+    let polyline = json!({"degree": 1, "control_points": [[0, 0], [2, 4], [5, 4], [7, 0]],
+                          "knots": [0, 0, 0.3, 0.6, 1, 1]});
+    paste(&page, &polyline).await;
+    let knots_off = page
+        .run(
+            "return [document.getElementById('method-knots').disabled, \
+             document.getElementById('methods-note').textContent];",
+            vec![],
+        )
+        .await;
+    assert_eq!(knots_off[0], json!(true), "{knots_off}");
+    assert!(
+        knots_off[1].as_str().unwrap().contains("degree 1"),
+        "{knots_off}"
+    );
     let quadratic = json!({"degree": 2, "control_points": [[0, 0], [2, 4], [5, 4], [7, 0]],
                            "knots": [0, 0, 0, 0.5, 1, 1, 1]});
     let spatial = json!({"degree": 3, "control_points": [[0, 0, 1], [2, 4, 2], [5, 4, 3], [7, 0, 4]],
                          "knots": [0, 0, 0, 0, 1, 1, 1, 1]});
+    // The knots move their points too (tests/editor/families.rs); here only the control
+    // points are ticked.
+    page.click_id("method-knots").await;
+    page.settle().await;
     for curve in [quadratic, spatial] {
         paste(&page, &curve).await;
-        let knots_off = page
+        let knots_on = page
             .run(
-                "return [document.getElementById('method-knots').disabled, \
-                 document.getElementById('methods-note').textContent];",
+                "return document.getElementById('method-knots').disabled;",
                 vec![],
             )
             .await;
-        assert_eq!(knots_off[0], json!(true), "{knots_off}");
-        assert!(knots_off[1].as_str().unwrap().contains("knot-pair method"));
+        assert_eq!(knots_on, json!(false));
         let (t, dot) = pick(&page, &app, &curve, 0.3).await;
         let before = point_of(&app, &curve, t).await;
         let aim = (dot.0 + 18, dot.1 - 22);

@@ -17,6 +17,7 @@ use crate::http::extract::ApiJson;
 use crate::http::middleware::AdmissionPermit;
 use crate::http::regions_media;
 use crate::http::state::AppState;
+use crate::http::wire::families::family_memberships;
 use crate::http::wire::methods::{ControlPointMembershipBody, ExclusionBody, WeightMembershipBody};
 use crate::http::wire::shape_answer::{
     MembershipResponse, NearestBody, RegionsResponse, SolveResponse, membership_candidates,
@@ -64,6 +65,7 @@ pub async fn membership(
         Ok(MembershipResponse {
             reachable: outcome.reachable(),
             candidates: membership_candidates(curve, &outcome.candidates),
+            families: family_memberships(curve, &outcome.families),
             control_points: outcome.control_points.clone().map(|changed| {
                 ControlPointMembershipBody {
                     contains: changed.is_some(),
@@ -92,6 +94,34 @@ fn edit_work(request: &ShapeRequest) -> usize {
         .control_points
         .len()
         .saturating_add(rows.pow(3).saturating_mul(poles_per_row))
+        .saturating_add(knot_family_work(&request.curve, KNOT_SET_WORK))
+}
+
+/// Point evaluations (roughly) one pair costs the knot families' solver per `(2p)²` of its
+/// polynomial's size; a triple ten times as much.
+const KNOT_SET_WORK: usize = 20;
+
+/// Point evaluations (roughly) one pair's region costs (its outline or its lattice of
+/// 33 × 33 points where the map folds).
+const KNOT_REGION_WORK: usize = 1_100;
+
+/// The knot families' work on `curve` (every family, both sides: the most a request asks),
+/// at `per_set` point evaluations per pair and unit of size: a cubic's solve stays inline, a
+/// quintic's (about a millisecond) goes to the blocking pool.
+fn knot_family_work(curve: &crate::http::curve::CurveBody, per_set: usize) -> usize {
+    let p = curve.degree.min(64);
+    if p < 2 {
+        return 0;
+    }
+    let pairs = (2 * p) * (2 * p - 1) / 2 + if p >= 3 { (2 * p - 2) * (2 * p - 3) } else { 0 };
+    let three_d = curve
+        .control_points
+        .first()
+        .is_some_and(|point| point.len() == 3);
+    let triples = if three_d { 20 } else { 0 };
+    (pairs + 10 * triples)
+        .saturating_mul((2 * p) * (2 * p))
+        .saturating_mul(per_set)
 }
 
 /// Parses a solve or membership request and runs the core's edit.
@@ -103,6 +133,7 @@ fn run_edit(
     let parsed = ParsedShape::parse(
         &request.curve,
         &request.regions,
+        request.knot_families.as_deref(),
         request.methods.as_deref(),
         curve_limits,
     )?;
@@ -176,6 +207,7 @@ pub async fn solve(
         Ok(SolveResponse {
             reachable: !solutions.is_empty(),
             candidates: membership_candidates(curve, &outcome.candidates),
+            families: family_memberships(curve, &outcome.families),
             solutions,
             nearest,
             excluded: outcome.excluded.iter().map(ExclusionBody::from).collect(),
@@ -213,8 +245,9 @@ pub async fn regions(
     ApiJson(request): ApiJson<RegionsRequest>,
 ) -> Result<Response, ApiError> {
     let (limits, curve_limits) = (state.limits, state.curve_limits);
-    // Up to two sides of six polygons, each up to the vertex limit.
-    let work = 12 * limits.max_polygon_vertices.max(MIN_POLYGON_VERTEX_LIMIT);
+    // Up to two sides of six polygons, each up to the vertex limit, and every family's pairs.
+    let work = (12 * limits.max_polygon_vertices.max(MIN_POLYGON_VERTEX_LIMIT))
+        .saturating_add(knot_family_work(&request.curve, KNOT_REGION_WORK / 16));
     let svg = regions_media::prefers_svg(&headers);
     compute(admission, work, move || {
         let answer = regions_request(&request, &limits, &curve_limits)?;
@@ -231,6 +264,7 @@ fn regions_request(
     let parsed = ParsedShape::parse(
         &request.curve,
         &request.regions,
+        request.knot_families.as_deref(),
         request.methods.as_deref(),
         curve_limits,
     );

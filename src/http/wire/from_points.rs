@@ -46,7 +46,7 @@ pub struct InterpolateRequest {
     #[schema(value_type = Vec<Vec<f64>>, example = json!([[0, 0], [3, 4], [-1, 4], [-4, 0], [-4, -3]]))]
     pub points: Vec<WireCoordinates>,
     /// Degree `p >= 1` (default 3), at most `points − 1` plus the number of end tangents
-    /// given.
+    /// given; at least 2 when an end tangent is given (`end_tangents`).
     #[serde(default)]
     #[schema(minimum = 1, example = 3)]
     pub degree: Option<usize>,
@@ -60,8 +60,9 @@ pub struct InterpolateRequest {
     #[serde(default)]
     pub parameters: Option<Vec<f64>>,
     /// `[start, end]`: the first derivative at the start and at the end (`null` for none),
-    /// with respect to the curve's own parameter; each adds a control point. Open curves of
-    /// degree 2 or more only.
+    /// with respect to the curve's own parameter; each adds a control point. Only for open
+    /// curves of `degree` ≥ 2: a tangent given (not `null`) with `degree: 1` or with
+    /// `closed: true` is a 422 at `/end_tangents` (a degree-1 curve has no room for them).
     #[serde(default)]
     #[schema(value_type = Option<Vec<Option<Vec<f64>>>>, example = json!([[1, 1], null]))]
     pub end_tangents: Option<Vec<Option<WireCoordinates>>>,

@@ -4,6 +4,7 @@
 pub mod closest;
 pub mod constraints;
 pub mod curves;
+pub mod families;
 pub mod files;
 pub mod methods;
 pub mod shape_answer;

@@ -44,15 +44,16 @@ pub struct ElevateDegreeResponse {
 pub struct RemoveKnotsRequest {
     /// The curve (rational or not, 2D or 3D, either knot convention).
     pub curve: CurveBody,
-    /// How far the curve may move (`>= 0`): `max_u |C(u) − C'(u)|`, certified. With 0 only
-    /// exactly removable knots go (a knot counts as removable when its bound is within the
-    /// tolerance plus `1e-12` times the largest control-point coordinate magnitude, the
-    /// rounding of the computation).
+    /// How far the curve may move (`>= 0`): `max_u |C(u) − C'(u)|`, certified. A removal is
+    /// made when its certified bound is within the tolerance plus a rounding allowance of
+    /// `1e-12 · M · w_max / w_min` (`M` the largest control-point coordinate magnitude, the
+    /// weight ratio 1 for a polynomial curve): so 0 removes exactly the exactly removable
+    /// knots, such as every knot `insert-knots` added, as often as it was added.
     #[schema(minimum = 0, example = 0.05)]
     pub tolerance: f64,
-    /// The knot values to try: interior knots of the curve (strictly inside the domain), a
-    /// value removed at most as many times as it is listed (at most its multiplicity).
-    /// Default: every interior knot, each up to its multiplicity.
+    /// The knot values to try: interior knots of the curve (strictly inside the domain), each
+    /// removed as often as the tolerance allows, up to its multiplicity (listing a value
+    /// again changes nothing). Default: every interior knot.
     #[serde(default)]
     pub knots: Option<Vec<f64>>,
 }

@@ -8,6 +8,7 @@ use utoipa::ToSchema;
 use crate::http::curve::{WirePoint, point_to_wire};
 use crate::http::error::ApiError;
 use crate::http::pointer::JsonPointer;
+use crate::http::wire::families::{FamilyMembershipBody, FamilyRegionsBody, family_regions_bodies};
 use crate::http::wire::methods::{ControlPointMembershipBody, ExclusionBody, WeightMembershipBody};
 use crate::http::wire::shape_request::{CandidateSide, Region};
 use crate::http::wire::solutions::SolutionBody;
@@ -49,11 +50,13 @@ pub struct CandidateBody {
     /// Index of the knot set to `t`, in the caller's knot convention.
     #[schema(example = 5)]
     pub moved_knot: usize,
-    /// The control points `d_{j-2}, d_{j-1}, d_j`.
+    /// The control points `d_{j-2}, d_{j-1}, d_j` (every side has them, also one that does
+    /// not apply; the OpenAPI document requires them).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     #[schema(value_type = Option<Vec<Vec<f64>>>)]
     pub triangle: Option<[WirePoint; 3]>,
-    /// The target's frame coordinates (membership and solve, applicable sides).
+    /// The target's frame coordinates: in membership and solve answers on every applicable
+    /// side (required there), never in regions answers (which have no target).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub frame: Option<FrameBody>,
 }
@@ -84,14 +87,18 @@ pub struct MembershipCandidate {
 
 /// Which regions hold the target.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
-#[schema(example = json!({"reachable": true, "excluded": [], "candidates": [{"side": "left", "applicable": true, "span": 4, "moved_knot": 5,
+#[schema(example = json!({"reachable": true, "excluded": [], "families": [{"family": "envelope", "side": "left", "applicable": true, "span": 4, "moved_knot": 5, "control_points": [[3.0, 4.0], [5.0, 3.5], [6.0, 1.0]], "pairs": [{"region": "omega2", "knots": [4, 6], "contains": true}, {"region": "omega4", "knots": [3, 6], "contains": false}]}], "candidates": [{"side": "left", "applicable": true, "span": 4, "moved_knot": 5,
               "triangle": [[3.0, 4.0], [5.0, 3.5], [6.0, 1.0]], "frame": {"x": 0.18, "y": 0.106667}, "regions": [{"region": "omega2", "knots": [4, 6], "contains": true}, {"region": "omega4", "knots": [3, 6], "contains": false}]}]}))]
 pub struct MembershipResponse {
     /// Whether any requested method reaches the target: a region of a candidate holds it, a
     /// weight pair does, or the control-point move meets it (and every constraint).
     pub reachable: bool,
-    /// One entry per requested side, when `methods` holds `knots` (else empty).
+    /// A cubic's envelope candidates, one per requested side, when `methods` holds `knots`
+    /// (else empty).
     pub candidates: Vec<MembershipCandidate>,
+    /// Every requested knot family (and envelope side) with the membership of its pairs or
+    /// triples, when `methods` holds `knots` (else empty); a cubic's envelope is here too.
+    pub families: Vec<FamilyMembershipBody>,
     /// The control-point move, when `methods` holds `control_points`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub control_points: Option<ControlPointMembershipBody>,
@@ -105,7 +112,7 @@ pub struct MembershipResponse {
 
 /// The reachable point nearest to an unreachable target, and the solutions that reach it.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
-#[schema(example = json!({"point": [5.2, 3.9], "distance": 0.41, "solutions": [{"method": "knots", "region": "omega3", "side": "right", "span": 5, "moved_knot": 6, "changed_knots": [6, 7, 8],
+#[schema(example = json!({"point": [5.2, 3.9], "distance": 0.41, "solutions": [{"method": "knots", "family": "envelope", "region": "omega3", "side": "right", "span": 5, "moved_knot": 6, "solved_knots": [7, 8], "changed_knots": [6, 7, 8], "conditioning": 0.12,
      "knots": [0, 0, 0, 0, 0.2, 0.35, 0.42, 0.61, 0.97, 1, 1, 1], "point": [5.2, 3.9],
      "residual": 0.0, "affected_domain": [0.2, 1], "max_deviation": 0.83}]}))]
 pub struct NearestBody {
@@ -121,16 +128,19 @@ pub struct NearestBody {
 
 /// Every way the requested methods move `s(t)` to the target.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
-#[schema(example = json!({"reachable": true, "candidates": [{"side": "left", "applicable": true, "span": 4, "moved_knot": 5,
-              "triangle": [[3.0, 4.0], [5.0, 3.5], [6.0, 1.0]], "frame": {"x": 0.18, "y": 0.106667}, "regions": [{"region": "omega2", "knots": [4, 6], "contains": true}, {"region": "omega4", "knots": [3, 6], "contains": false}]}], "excluded": [], "solutions": [{"method": "knots", "region": "omega2", "side": "left", "span": 4, "moved_knot": 5, "changed_knots": [4, 5, 6],
+#[schema(example = json!({"reachable": true, "families": [{"family": "envelope", "side": "left", "applicable": true, "span": 4, "moved_knot": 5, "control_points": [[3.0, 4.0], [5.0, 3.5], [6.0, 1.0]], "pairs": [{"region": "omega2", "knots": [4, 6], "contains": true}, {"region": "omega4", "knots": [3, 6], "contains": false}]}], "candidates": [{"side": "left", "applicable": true, "span": 4, "moved_knot": 5,
+              "triangle": [[3.0, 4.0], [5.0, 3.5], [6.0, 1.0]], "frame": {"x": 0.18, "y": 0.106667}, "regions": [{"region": "omega2", "knots": [4, 6], "contains": true}, {"region": "omega4", "knots": [3, 6], "contains": false}]}], "excluded": [], "solutions": [{"method": "knots", "family": "envelope", "region": "omega2", "side": "left", "span": 4, "moved_knot": 5, "solved_knots": [4, 6], "changed_knots": [4, 5, 6], "conditioning": 0.21,
      "knots": [0, 0, 0, 0, 0.3, 0.42, 0.6, 0.75, 1, 1, 1, 1], "point": [4.746667, 3.323333],
      "residual": 3.2e-15, "affected_domain": [0, 1], "max_deviation": 1.030559}]}))]
 pub struct SolveResponse {
     /// Whether any solution exists (`false` is a normal answer, not an error).
     pub reachable: bool,
-    /// One entry per requested side, with region membership, when `methods` holds `knots`
-    /// (else empty).
+    /// A cubic's envelope candidates, one per requested side, with region membership, when
+    /// `methods` holds `knots` (else empty).
     pub candidates: Vec<MembershipCandidate>,
+    /// Every requested knot family (and envelope side) with the membership of its pairs or
+    /// triples, when `methods` holds `knots` (else empty); a cubic's envelope is here too.
+    pub families: Vec<FamilyMembershipBody>,
     /// Every solution of every requested method, sorted by `max_deviation`, smallest first.
     pub solutions: Vec<SolutionBody>,
     /// With `nearest: true`, when no solution reaches the target: the nearest reachable
@@ -184,10 +194,21 @@ pub struct RegionsCandidate {
               "triangle": [[3.0, 4.0], [5.0, 3.5], [6.0, 1.0]], "regions": [{"region": "omega2", "knots": [4, 6],
      "polygon": [[5.56, 2.1], [4.9264, 2.8128], [4.12, 3.72], [5.0, 3.5], [5.56, 2.1]],
      "polygon_frame": [[0.0, 0.56], [0.1936, 0.3136], [0.44, 0.0], [0.0, 0.0], [0.0, 0.56]],
-     "tolerance_met": true}]}], "weight_regions": []}))]
+     "tolerance_met": true}]}],
+     "families": [{"family": "envelope", "side": "left", "applicable": true, "span": 4, "moved_knot": 5,
+       "control_points": [[3.0, 4.0], [5.0, 3.5], [6.0, 1.0]], "regions": [{"region": "omega2", "knots": [4, 6],
+       "polygon": [[5.56, 2.1], [4.9264, 2.8128], [4.12, 3.72], [5.0, 3.5], [5.56, 2.1]],
+       "polygons": [[[5.56, 2.1], [4.9264, 2.8128], [4.12, 3.72], [5.0, 3.5], [5.56, 2.1]]],
+       "folded": false, "tolerance_met": true,
+       "polygon_frame": [[0.0, 0.56], [0.1936, 0.3136], [0.44, 0.0], [0.0, 0.0], [0.0, 0.56]]}]}],
+     "weight_regions": []}))]
 pub struct RegionsResponse {
-    /// One entry per requested side, when `methods` holds `knots` (else empty).
+    /// A cubic's envelope candidates, one per requested side, when `methods` holds `knots`
+    /// (else empty).
     pub candidates: Vec<RegionsCandidate>,
+    /// Every requested knot family (and envelope side) with its pairs' regions, when
+    /// `methods` holds `knots` (else empty); a cubic's envelope is here too.
+    pub families: Vec<FamilyRegionsBody>,
     /// Each weight pair's reachable quadrilateral, when `methods` holds `weights` (pairs with
     /// a fixed pole left out).
     pub weight_regions: Vec<WeightRegionBody>,
@@ -323,6 +344,7 @@ pub fn regions_response(curve: &Curve, reachable: ReachableRegions) -> RegionsRe
     let dimension = curve.dimension();
     let candidates: Vec<CandidateRegions> = reachable.candidates;
     RegionsResponse {
+        families: family_regions_bodies(curve, &reachable.families),
         weight_regions: reachable
             .weight_regions
             .iter()

@@ -9,15 +9,14 @@ use crate::http::curve::CurveBody;
 use crate::http::error::{ApiError, FieldError};
 use crate::http::pointer::JsonPointer;
 use crate::http::wire::constraints::{ConstraintBody, parse_constraints, parse_fixed};
+use crate::http::wire::families::{KnotFamily, parse_families};
 use crate::http::wire::methods::{Method, Methods};
+use crate::shape::family::FamilyChoice;
 use crate::shape::{
     ConstraintSet, EditContext, FixedPoles, KnotPair, PoleVariables, ShapeError, ShapeQuery,
     SideChoice,
 };
 use crate::spline::{Curve, CurveLimits};
-
-/// The degree the knot-pair method works on.
-const CUBIC: usize = 3;
 
 /// Which knot next to `t` may move to `t`.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize, ToSchema)]
@@ -149,7 +148,8 @@ fn keep_domain_default() -> bool {
     "keep_domain": true
 }))]
 pub struct ShapeRequest {
-    /// The curve: cubic when `methods` holds `knots` (the default), any degree otherwise.
+    /// The curve: degree 2 or more when `methods` holds `knots` (the default), any degree
+    /// otherwise.
     pub curve: CurveBody,
     /// The picked parameter `t`, inside the domain; one outside it by at most `1e-12` of the
     /// domain's length (or 4 units of roundoff of the ends) is taken as the nearer end.
@@ -161,9 +161,15 @@ pub struct ShapeRequest {
     /// Which knot next to `t` moves to `t` (default `both`).
     #[serde(default)]
     pub side: SideRequest,
-    /// The regions to try (default all six); no repeats.
+    /// A cubic's envelope pairs to try (default all six); no repeats.
     #[serde(default)]
     pub regions: Option<Vec<Region>>,
+    /// The knot families to try (default: every family that applies — `envelope` on degree
+    /// ≥ 3, `direct` on degree ≥ 2, `triples` on 3D curves); no repeats. `triples` on a 2D
+    /// curve is answered with the family not applicable (three knots, two equations).
+    #[serde(default)]
+    #[schema(value_type = Option<Vec<KnotFamily>>, example = json!(["envelope", "direct"]))]
+    pub knot_families: Option<Vec<String>>,
     /// Drop solutions that move the ends of the curve's domain (default `true`).
     #[serde(default = "keep_domain_default")]
     #[schema(default = true, example = true)]
@@ -210,7 +216,8 @@ pub struct ShapeRequest {
     "tolerance": 0.01
 }))]
 pub struct RegionsRequest {
-    /// The curve: cubic when `methods` holds `knots` (the default), any degree otherwise.
+    /// The curve: degree 2 or more when `methods` holds `knots` (the default), any degree
+    /// otherwise.
     pub curve: CurveBody,
     /// The picked parameter `t`, inside the domain; one outside it by at most `1e-12` of the
     /// domain's length (or 4 units of roundoff of the ends) is taken as the nearer end.
@@ -219,9 +226,13 @@ pub struct RegionsRequest {
     /// Which knot next to `t` moves to `t` (default `both`).
     #[serde(default)]
     pub side: SideRequest,
-    /// The regions to draw (default all six); no repeats.
+    /// A cubic's envelope pairs to draw (default all six); no repeats.
     #[serde(default)]
     pub regions: Option<Vec<Region>>,
+    /// The knot families whose regions to draw (as in solve).
+    #[serde(default)]
+    #[schema(value_type = Option<Vec<KnotFamily>>, example = json!(["envelope", "direct"]))]
+    pub knot_families: Option<Vec<String>>,
     /// As in solve (default `true`): a drawn region holds only targets that solve reaches
     /// with the same request, so pairs whose knots the rule freezes are not drawn.
     #[serde(default = "keep_domain_default")]
@@ -265,6 +276,8 @@ pub struct ParsedShape {
     pub methods: Methods,
     /// The requested knot pairs, in order, without repeats.
     pub pairs: Vec<KnotPair>,
+    /// The requested knot families.
+    pub families: FamilyChoice,
 }
 
 /// The validated conditions of an edit, which the core's [`EditContext`] borrows.
@@ -278,26 +291,25 @@ pub struct ParsedConditions {
 }
 
 impl ParsedShape {
-    /// Checks the methods, then the degree (the knot pairs need a cubic: a 422 at
-    /// `/curve/degree` that names the methods that take any degree), then the curve and the
-    /// regions.
+    /// Checks the methods, then the degree (the knot method needs degree 2 or more: a 422 at
+    /// `/curve/degree` that names the methods that take degree 1), then the curve, the
+    /// regions and the knot families.
     pub fn parse(
         curve: &CurveBody,
         regions: &Option<Vec<Region>>,
+        knot_families: Option<&[String]>,
         methods: Option<&[String]>,
         curve_limits: &CurveLimits,
     ) -> Result<ParsedShape, ApiError> {
         let methods = Methods::parse(methods)?;
-        if methods.knots() && curve.degree != CUBIC {
+        if methods.knots() && curve.degree < 2 {
             return Err(ApiError::invalid(
                 "/curve/degree",
-                ShapeError::NotCubic {
-                    degree: curve.degree,
-                }
-                .to_string(),
+                ShapeError::DegreeOne.to_string(),
             ));
         }
         let mut errors = Vec::new();
+        let families = parse_families(knot_families, &mut errors);
         let parsed_curve =
             curve.parse_collecting_allowing_periodic(curve_limits, "/curve", &mut errors);
         let pairs = match regions {
@@ -329,6 +341,7 @@ impl ParsedShape {
                 curve,
                 methods,
                 pairs,
+                families,
             }),
             _ => Err(ApiError::Invalid(errors)),
         }
@@ -343,6 +356,7 @@ impl ParsedShape {
             parameter: self.curve.snap_to_domain(parameter).unwrap_or(parameter),
             side: side.into(),
             pairs: &self.pairs,
+            families: self.families,
             keep_domain,
         }
     }

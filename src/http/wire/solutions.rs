@@ -6,8 +6,9 @@ use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
 use crate::http::curve::{WirePoint, point_to_wire};
+use crate::http::wire::families::{KnotFamily, region_label};
 use crate::http::wire::shape_answer::caller_knot_index;
-use crate::http::wire::shape_request::{CandidateSide, Region};
+use crate::http::wire::shape_request::CandidateSide;
 use crate::shape::{EditSolution, SolutionDetail};
 use crate::spline::Curve;
 
@@ -40,20 +41,36 @@ pub enum WeightsMethod {
 
 /// New knots that move `s(t)` onto the target.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
-#[schema(example = json!({"method": "knots", "region": "omega2", "side": "left", "span": 4, "moved_knot": 5, "changed_knots": [4, 5, 6],
+#[schema(example = json!({"method": "knots", "family": "envelope", "region": "omega2", "side": "left", "span": 4, "moved_knot": 5,
+     "solved_knots": [4, 6], "changed_knots": [4, 5, 6],
      "knots": [0, 0, 0, 0, 0.3, 0.42, 0.6, 0.75, 1, 1, 1, 1], "point": [4.746667, 3.323333],
-     "residual": 3.2e-15, "affected_domain": [0, 1], "max_deviation": 1.030559}))]
+     "residual": 3.2e-15, "affected_domain": [0, 1], "max_deviation": 1.030559, "conditioning": 0.21}))]
 pub struct KnotSolutionBody {
     /// `"knots"`.
     pub method: KnotsMethod,
-    /// The region (knot pair) that reaches the target.
-    pub region: Region,
-    /// Which knot moved to `t`.
-    pub side: CandidateSide,
-    /// The span `j` (full-vector numbering, as in the candidates).
+    /// The knot family.
+    pub family: KnotFamily,
+    /// The pair or triple that reaches the target: `"omega1"` … `"omega6"` for a cubic's
+    /// envelope pairs, otherwise `"<family>:<a>,<b>"` (or `"triples:<a>,<b>,<c>"`) with the
+    /// knots' indices in the caller's convention.
+    #[schema(example = "omega2")]
+    pub region: String,
+    /// The envelope's side: which knot moved to `t`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub side: Option<CandidateSide>,
+    /// The span `j` (full-vector numbering, as in the candidates and families).
     pub span: usize,
-    /// Index (caller's convention) of the knot set to `t`.
-    pub moved_knot: usize,
+    /// The envelope's knot set to `t` (caller's convention).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub moved_knot: Option<usize>,
+    /// Indices (caller's convention) of the pair's or triple's knots.
+    pub solved_knots: Vec<usize>,
+    /// How well the solution is determined: the smallest singular value of the point's
+    /// derivative with respect to the solved knots (each scaled by its room), over the size
+    /// of the control points acting. Near 0 close to a fold of the map or for knots far
+    /// from `t`: such a solution moves a lot for a small change of the target. Among
+    /// solutions of (nearly) equal `max_deviation` the better determined comes first.
+    pub conditioning: f64,
     /// Indices (caller's convention) of the knots whose values changed, ascending.
     pub changed_knots: Vec<usize>,
     /// The whole new knot vector, in the caller's convention.
@@ -137,9 +154,10 @@ pub struct WeightSolutionBody {
 /// new weights.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
 #[serde(untagged)]
-#[schema(example = json!({"method": "knots", "region": "omega2", "side": "left", "span": 4, "moved_knot": 5, "changed_knots": [4, 5, 6],
+#[schema(example = json!({"method": "knots", "family": "envelope", "region": "omega2", "side": "left", "span": 4, "moved_knot": 5,
+     "solved_knots": [4, 6], "changed_knots": [4, 5, 6],
      "knots": [0, 0, 0, 0, 0.3, 0.42, 0.6, 0.75, 1, 1, 1, 1], "point": [4.746667, 3.323333],
-     "residual": 3.2e-15, "affected_domain": [0, 1], "max_deviation": 1.030559}))]
+     "residual": 3.2e-15, "affected_domain": [0, 1], "max_deviation": 1.030559, "conditioning": 0.21}))]
 #[schema(discriminator(property_name = "method", mapping(
     ("knots" = "#/components/schemas/KnotSolutionBody"),
     ("control_points" = "#/components/schemas/ControlPointSolutionBody"),
@@ -183,17 +201,27 @@ pub fn solution_body(curve: &Curve, solution: &EditSolution, svg_path: bool) -> 
     };
     match &solution.detail {
         SolutionDetail::Knots {
+            family,
             pair,
             side,
             span,
             moved_knot,
+            knots_moved,
             changed_knots,
+            conditioning,
         } => SolutionBody::Knots(KnotSolutionBody {
             method: KnotsMethod::Knots,
-            region: (*pair).into(),
-            side: (*side).into(),
+            family: (*family).into(),
+            region: region_label(curve, *family, *pair, knots_moved),
+            side: side.map(Into::into),
             span: *span,
-            moved_knot: caller_knot_index(curve, *moved_knot),
+            moved_knot: moved_knot.map(|i| caller_knot_index(curve, i)),
+            solved_knots: knots_moved
+                .indices()
+                .iter()
+                .map(|&i| caller_knot_index(curve, i))
+                .collect(),
+            conditioning: *conditioning,
             changed_knots: changed_knots
                 .iter()
                 .map(|&full| caller_knot_index(curve, full))

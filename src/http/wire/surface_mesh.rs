@@ -9,6 +9,7 @@ use crate::surface::Mesh;
 /// How the mesh is answered.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, Serialize, ToSchema)]
 #[serde(rename_all = "lowercase")]
+#[schema(example = json!("gltf"))]
 pub enum MeshFormat {
     /// `application/json`: the fields of `TessellateResponse`.
     #[default]

@@ -11,6 +11,7 @@ use crate::surface::Direction;
 /// Which parameter is held (iso-curve) or cut (split).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize, ToSchema)]
 #[serde(rename_all = "lowercase")]
+#[schema(example = json!("v"))]
 pub enum FixedParameter {
     /// `u`.
     U,
@@ -94,6 +95,12 @@ pub struct SurfaceInsertKnotsRequest {
 
 /// The refined surface.
 #[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+#[schema(example = json!({
+    "surface": {"degree_u": 1, "degree_v": 1,
+                "control_points": [[[0, 0, 0], [0, 1, 0]], [[0.5, 0, 0], [0.5, 1, 0.5]],
+                                   [[1, 0, 0], [1, 1, 1]]],
+                "knots_u": [0, 0, 0.5, 1, 1], "knots_v": [0, 0, 1, 1]}
+}))]
 pub struct SurfaceInsertKnotsResponse {
     /// The same surface over the finer knot vectors (same shape, more control points), in the
     /// caller's knot conventions (periodic directions stay periodic).
@@ -123,6 +130,16 @@ pub struct SurfaceSplitRequest {
 
 /// The pieces.
 #[derive(Debug, Clone, Deserialize, Serialize, ToSchema)]
+#[schema(example = json!({
+    "surfaces": [
+        {"degree_u": 1, "degree_v": 1,
+         "control_points": [[[0, 0, 0], [0, 1, 0]], [[0.5, 0, 0], [0.5, 1, 0.5]]],
+         "knots_u": [0, 0, 0.5, 0.5], "knots_v": [0, 0, 1, 1]},
+        {"degree_u": 1, "degree_v": 1,
+         "control_points": [[[0.5, 0, 0], [0.5, 1, 0.5]], [[1, 0, 0], [1, 1, 1]]],
+         "knots_u": [0.5, 0.5, 1, 1], "knots_v": [0, 0, 1, 1]}
+    ]
+}))]
 pub struct SurfaceSplitResponse {
     /// One surface per piece, in order of the cut parameter: each clamped in the cut
     /// direction (`degree + 1` equal end knots; a periodic direction is cut open), the other

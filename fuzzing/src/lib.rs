@@ -1,11 +1,18 @@
-//! The check shared by the fuzz target `post_bodies` (`fuzz/`) and the corpus replay test
-//! (`tests/fuzz_corpus.rs`): raw bytes as the body of a POST endpoint, through the real
-//! router in-process, must give no server error, and every client error must be a problem
-//! document that says why.
+//! knotshape-fuzzing: the checks the fuzz targets (`fuzz/`, cargo-fuzz on nightly) run on each
+//! input, and that the corpus replay test (`tests/fuzz_corpus.rs`) runs on stable. Outside the
+//! service on purpose: a crate of the workspace that only knotshape's tests depend on, so the
+//! library's API, the binary and its docs carry none of it (nor `arbitrary`).
 //!
-//! The endpoints are the POST operations of [`crate::openapi`], so new ones are fuzzed as soon
-//! as they are documented. The input's first byte picks the endpoint (modulo their number),
-//! the rest is the body.
+//! * [`Target`] (here, target `post_bodies`): raw bytes as the body of a POST endpoint,
+//!   through the real router in-process, must give no server error, and every client error
+//!   must be a problem document that says why. The endpoints are the POST operations of
+//!   [`knotshape::openapi`], so new ones are fuzzed as soon as they are documented. The
+//!   input's first byte picks the endpoint (modulo their number), the rest is the body.
+//! * [`structured`] (target `structured`): bytes to a valid random curve through the core's
+//!   operations, each answer checked another way.
+//! * [`files`] (targets `step_import`, `dxf_import`): bytes as a file through the readers and
+//!   writers.
+#![cfg_attr(test, allow(clippy::unwrap_used))]
 
 pub mod files;
 pub mod structured;
@@ -16,7 +23,7 @@ use axum::http::{Request, header};
 use serde_json::Value;
 use tower::ServiceExt;
 
-use crate::config::Config;
+use knotshape::config::Config;
 
 /// The content types of exported files (`/v1/curves/export`).
 const FILE_TYPES: [&str; 2] = ["model/step", "image/vnd.dxf"];
@@ -40,7 +47,7 @@ impl Default for Target {
 impl Target {
     /// The router with the default configuration, and every documented POST path (sorted).
     pub fn new() -> Target {
-        let post_paths = crate::openapi()
+        let post_paths = knotshape::openapi()
             .paths
             .paths
             .iter()
@@ -48,7 +55,7 @@ impl Target {
             .map(|(path, _)| path.clone())
             .collect();
         Target {
-            router: crate::app(&Config::default()),
+            router: knotshape::app(&Config::default()),
             post_paths,
         }
     }
@@ -113,7 +120,7 @@ impl Target {
 /// A client error must be `application/problem+json` with its status, a title, and a detail
 /// that says why; listed field errors each name a JSON pointer and say why.
 fn check_problem(status: u16, content_type: &str, problem: &Value) -> Result<(), String> {
-    if content_type != crate::http::error::PROBLEM_JSON {
+    if content_type != knotshape::http::error::PROBLEM_JSON {
         return Err(format!(
             "content type {content_type:?}, not a problem document"
         ));
@@ -164,7 +171,7 @@ mod tests {
     fn the_problem_check_refuses_what_it_should() {
         let good = serde_json::json!({"status": 422, "title": "Unprocessable Entity",
             "detail": "bad", "errors": [{"pointer": "/curve", "detail": "missing"}]});
-        let json = crate::http::error::PROBLEM_JSON;
+        let json = knotshape::http::error::PROBLEM_JSON;
         assert!(check_problem(422, json, &good).is_ok());
         assert!(check_problem(422, "application/json", &good).is_err());
         assert!(check_problem(400, json, &good).is_err());

@@ -20,13 +20,13 @@
 
 use arbitrary::{Arbitrary, Unstructured};
 
-use crate::shape::{
+use knotshape::shape::{
     self, ConstraintSet, ConstraintSpec, EditContext, EditOptions, FixedPoles, KnotPair,
     MethodKind, PoleVariables, PolygonOptions, ShapeQuery, SideChoice, SolveOptions,
     nearest_reachable,
 };
-use crate::spline::vector::{Point, distance};
-use crate::spline::{ClosestPointSearch, Curve, CurveLimits};
+use knotshape::spline::vector::{Point, distance};
+use knotshape::spline::{ClosestPointSearch, Curve, CurveLimits};
 
 /// Largest number of control points drawn.
 const MAX_EXTRA_POINTS: usize = 12;
@@ -258,6 +258,7 @@ fn check_shape(case: &Case, size: f64) -> Result<(), String> {
     let query = ShapeQuery {
         side: SideChoice::Both,
         pairs: &KnotPair::ALL,
+        families: Default::default(),
         keep_domain: case.fractions[3] < 0.7,
         ..ShapeQuery::new(curve, t)
     };

@@ -3,11 +3,11 @@
 //! curves or an error, never a panic; the curves read must write and read back to the same
 //! control points, weights and domains.
 
-use crate::interchange::{FileLimits, Imported, dxf, step};
-use crate::spline::Curve;
+use knotshape::interchange::{FileLimits, Imported, dxf, step};
+use knotshape::spline::Curve;
 
 /// A reader or a writer of one format.
-type Reader = fn(&str, &FileLimits) -> Result<Imported, crate::interchange::FileError>;
+type Reader = fn(&str, &FileLimits) -> Result<Imported, knotshape::interchange::FileError>;
 type Writer = fn(&[Curve]) -> String;
 
 /// Reads `input` as a STEP file and checks the round trip of what it holds.

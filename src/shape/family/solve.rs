@@ -1,0 +1,460 @@
+//! Solving every requested family at a picked parameter (docs/method.md §31): the cubic's
+//! envelope pairs Ω1–Ω6 by the closed forms of §4 (unchanged), every other family's pairs and
+//! triples by [`super::roots`], and each solution rebuilt as a whole knot vector, checked
+//! against the admissibility rules and verified by evaluating the new curve with the spline
+//! core.
+
+use super::local::LocalProblem;
+use super::problems::{
+    Family, FamilyChoice, FamilyProblem, direct_problem, envelope_problem, extent, plane_of,
+    unknown_sets,
+};
+use super::roots::{LocalRoot, solve_unknowns};
+use super::tensor::MAX_VARIABLES;
+use crate::shape::candidate::Side;
+use crate::shape::pairs::KnotPair;
+use crate::shape::solve::{
+    CandidateOutcome, RESIDUAL_TOLERANCE, ShapeQuery, SolveOptions, affected_domain, solve,
+};
+use crate::spline::Curve;
+use crate::spline::vector::{Point, distance, dot};
+
+/// The knots a pair or triple moves: full-vector indices, ascending.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct KnotSet {
+    indices: [usize; MAX_VARIABLES],
+    len: usize,
+}
+
+impl KnotSet {
+    /// The set of `indices` (2 or 3, ascending).
+    pub fn new(indices: &[usize]) -> KnotSet {
+        let mut set = KnotSet {
+            indices: [0; MAX_VARIABLES],
+            len: indices.len().min(MAX_VARIABLES),
+        };
+        set.indices[..set.len].copy_from_slice(&indices[..set.len]);
+        set
+    }
+
+    /// The indices.
+    pub fn indices(&self) -> &[usize] {
+        &self.indices[..self.len]
+    }
+}
+
+/// One way a knot family moves `s(t)` onto the target.
+#[derive(Debug, Clone, PartialEq)]
+pub struct KnotSolution {
+    /// The family.
+    pub family: Family,
+    /// The envelope's side.
+    pub side: Option<Side>,
+    /// The span `j` of the family's problem.
+    pub span: usize,
+    /// The envelope's knot set to `t` (full index).
+    pub moved_knot: Option<usize>,
+    /// Ω1–Ω6 for a cubic's envelope pairs.
+    pub omega: Option<KnotPair>,
+    /// The solved knots.
+    pub knots_moved: KnotSet,
+    /// The new full knot vector.
+    pub knots: Vec<f64>,
+    /// Full-vector indices whose values changed, ascending.
+    pub changed_knots: Vec<usize>,
+    /// The new curve's point at `t`.
+    pub point: Point,
+    /// `|point - target|`.
+    pub residual: f64,
+    /// Outside it the new curve equals the old one.
+    pub affected_domain: (f64, f64),
+    /// The smallest singular value of `∂P/∂(knots)` with each knot scaled by its room,
+    /// relative to the local control points' extent: how well the solution is determined
+    /// (small near a fold, or for a knot far from `t`).
+    pub conditioning: f64,
+}
+
+/// Whether one pair or triple reaches the target.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SetMembership {
+    /// The knots it moves.
+    pub knots: KnotSet,
+    /// Ω1–Ω6 for a cubic's envelope pairs.
+    pub omega: Option<KnotPair>,
+    /// A kept solution exists.
+    pub contains: bool,
+}
+
+/// One family (one side of the envelope) at the picked parameter, with its pairs or triples.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FamilyGroup {
+    /// The family and its local problem.
+    pub problem: FamilyProblem,
+    /// Why it does not apply, if so (as a sentence).
+    pub reason: Option<String>,
+    /// One entry per pair or triple tried.
+    pub members: Vec<SetMembership>,
+}
+
+/// Every family's answer.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct FamilyOutcome {
+    /// The cubic's envelope candidates in their original form (empty on other degrees).
+    pub candidates: Vec<CandidateOutcome>,
+    /// One entry per family (and envelope side).
+    pub groups: Vec<FamilyGroup>,
+    /// Every kept solution.
+    pub solutions: Vec<KnotSolution>,
+}
+
+/// Subdivision boxes one request may examine over all its pairs and triples (a time bound:
+/// a few tens of milliseconds at most).
+pub const REQUEST_BOXES: usize = 60_000;
+
+/// The local problems of the requested families at `query.parameter`, in answer order:
+/// envelope right, envelope left, direct, triples.
+pub fn family_problems(query: &ShapeQuery, choice: FamilyChoice) -> Vec<FamilyProblem> {
+    let curve = query.curve;
+    let t = query.parameter;
+    let mut problems = Vec::new();
+    if choice.includes(Family::Envelope, curve) {
+        for &side in query.side.sides() {
+            problems.push(envelope_problem(curve, t, side, query.keep_domain));
+        }
+    }
+    for family in [Family::Direct, Family::Triples] {
+        if choice.includes(family, curve) {
+            problems.push(direct_problem(curve, t, family));
+        }
+    }
+    problems
+}
+
+/// The directions the equations of a set of `size` unknowns are taken along: the plane's
+/// axes for pairs on 3D curves (the target must lie on the pair's surface of reach), the
+/// coordinate axes otherwise (on a 2D curve triples meet two equations: their solutions
+/// where the knots' change is stationary are taken, docs/method.md §31.4).
+fn rows_for(curve: &Curve, problem: &FamilyProblem, size: usize) -> Option<Vec<Point>> {
+    let axes = vec![[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    match (curve.dimension().count(), size) {
+        (2, _) => Some(axes[..2].to_vec()),
+        (3, 3) => Some(axes),
+        (3, 2) => plane_of(&problem.control_points()).map(|[e1, e2, _]| vec![e1, e2]),
+        _ => None,
+    }
+}
+
+/// Solves `s(t) → target` with every requested family (module docs).
+pub fn solve_families(query: &ShapeQuery, choice: FamilyChoice, target: Point) -> FamilyOutcome {
+    let curve = query.curve;
+    let mut outcome = FamilyOutcome::default();
+    let mut budget = REQUEST_BOXES;
+    for problem in family_problems(query, choice) {
+        if problem.family == Family::Envelope && curve.degree() == 3 {
+            cubic_envelope(query, target, problem, &mut outcome);
+            continue;
+        }
+        let mut group = FamilyGroup {
+            reason: problem.not_applicable.map(|r| r.to_string()),
+            members: Vec::new(),
+            problem,
+        };
+        let Some(local) = group.problem.problem.clone() else {
+            outcome.groups.push(group);
+            continue;
+        };
+        if group.reason.is_some() {
+            outcome.groups.push(group);
+            continue;
+        }
+        let size = if group.problem.family == Family::Triples {
+            3
+        } else {
+            2
+        };
+        let Some(rows) = rows_for(curve, &group.problem, size) else {
+            group.reason = Some("the control points acting are collinear".to_string());
+            outcome.groups.push(group);
+            continue;
+        };
+        let accepted = accepted_residual(&group.problem.control_points(), target);
+        let weighted = local.poles.iter().any(|h| h[3] != local.poles[0][3]);
+        for unknowns in unknown_sets(&local, size, curve, query.keep_domain) {
+            let full: Vec<usize> = unknowns.iter().map(|&m| local.full_index[m]).collect();
+            let set = KnotSet::new(&full);
+            let mut contains = false;
+            for root in solve_unknowns(&local, &unknowns, target, &rows, weighted, &mut budget) {
+                if let Some(solution) = full_solution(
+                    query,
+                    &group.problem,
+                    &local,
+                    &unknowns,
+                    &root,
+                    target,
+                    accepted,
+                ) {
+                    contains = true;
+                    outcome.solutions.push(solution);
+                }
+            }
+            group.members.push(SetMembership {
+                knots: set,
+                omega: None,
+                contains,
+            });
+        }
+        outcome.groups.push(group);
+    }
+    outcome
+}
+
+/// The cubic's envelope side by the closed forms of §4 (the third release's solver, whose
+/// answers stay as they were), converted to the families' form.
+fn cubic_envelope(
+    query: &ShapeQuery,
+    target: Point,
+    problem: FamilyProblem,
+    outcome: &mut FamilyOutcome,
+) {
+    let Some(side) = problem.side else { return };
+    let side_query = ShapeQuery {
+        side: match side {
+            Side::Right => crate::shape::SideChoice::Right,
+            Side::Left => crate::shape::SideChoice::Left,
+        },
+        ..*query
+    };
+    let dimension = query.curve.dimension().count();
+    let options = SolveOptions {
+        measure_deviation: false,
+    };
+    let Ok(found) = solve(&side_query, &target[..dimension], options) else {
+        return;
+    };
+    let mut group = FamilyGroup {
+        reason: None,
+        members: Vec::new(),
+        problem,
+    };
+    for candidate in found.candidates {
+        group.reason = candidate
+            .candidate
+            .not_applicable
+            .map(|reason| reason.to_string());
+        group.members = candidate
+            .regions
+            .iter()
+            .map(|region| SetMembership {
+                knots: KnotSet::new(&region.knots),
+                omega: Some(region.pair),
+                contains: region.contains,
+            })
+            .collect();
+        outcome.candidates.push(candidate);
+    }
+    for solution in found.solutions {
+        let [first, second] = solution.pair.unknowns();
+        let indices = [
+            first.full_index(solution.span),
+            second.full_index(solution.span),
+        ];
+        let conditioning = group.problem.problem.as_ref().map_or(0.0, |local| {
+            let local_knots: Vec<f64> = local
+                .full_index
+                .iter()
+                .map(|&i| solution.knots[i])
+                .collect();
+            let unknowns: Vec<usize> = indices
+                .iter()
+                .filter_map(|&i| local.full_index.iter().position(|&f| f == i))
+                .collect();
+            conditioning(local, &local_knots, &unknowns)
+        });
+        outcome.solutions.push(KnotSolution {
+            family: Family::Envelope,
+            side: Some(solution.side),
+            span: solution.span,
+            moved_knot: Some(solution.moved_knot),
+            omega: Some(solution.pair),
+            knots_moved: KnotSet::new(&indices),
+            knots: solution.knots,
+            changed_knots: solution.changed_knots,
+            point: solution.point,
+            residual: solution.residual,
+            affected_domain: solution.affected_domain,
+            conditioning,
+        });
+    }
+    outcome.groups.push(group);
+}
+
+/// The residual a solution may have: [`RESIDUAL_TOLERANCE`] times the local control points'
+/// extent, plus the rounding floor `64 ε |target|`.
+fn accepted_residual(control_points: &[Point], target: Point) -> f64 {
+    let magnitude = target.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    RESIDUAL_TOLERANCE * extent(control_points) + 64.0 * f64::EPSILON * magnitude
+}
+
+/// The whole solution of a local root, or `None` when a rule drops it (docs/method.md §31.2):
+/// the new knot vector is not monotone or not finite, its domain is empty or (under
+/// `keep_domain`) moved, a knot value's multiplicity grows past `p`, or the new curve,
+/// evaluated by the spline core at `t`, misses the target by more than `accepted`.
+pub(crate) fn full_solution(
+    query: &ShapeQuery,
+    problem: &FamilyProblem,
+    local: &LocalProblem,
+    unknowns: &[usize],
+    root: &LocalRoot,
+    target: Point,
+    accepted: f64,
+) -> Option<KnotSolution> {
+    let curve = query.curve;
+    let t = query.parameter;
+    let old = curve.knots();
+    let mut knots = old.to_vec();
+    if let Some(i) = problem.moved_knot {
+        knots[i] = t;
+    }
+    for &m in unknowns {
+        knots[local.full_index[m]] = root.knots[m];
+    }
+    if !knots_admissible(curve, &knots, query.keep_domain) {
+        return None;
+    }
+    let point = curve.point_with_knots(&knots, t);
+    let residual = distance(point, target);
+    if residual.is_nan() || residual > accepted {
+        return None;
+    }
+    let changed_knots: Vec<usize> = (0..old.len()).filter(|&i| knots[i] != old[i]).collect();
+    let affected = affected_domain(curve, &knots, &changed_knots);
+    let full: Vec<usize> = unknowns.iter().map(|&m| local.full_index[m]).collect();
+    Some(KnotSolution {
+        family: problem.family,
+        side: problem.side,
+        span: problem.span,
+        moved_knot: problem.moved_knot,
+        omega: None,
+        knots_moved: KnotSet::new(&full),
+        conditioning: conditioning(local, &root.knots, unknowns),
+        knots,
+        changed_knots,
+        point,
+        residual,
+        affected_domain: affected,
+    })
+}
+
+/// Whether a new full knot vector keeps the rules of docs/method.md §31.2: finite and
+/// non-decreasing, a non-empty domain, no knot value repeated more than `p` times inside the
+/// domain (more than it already was), and, under `keep_domain`, the domain's ends in place
+/// without a knot moved onto them.
+pub fn knots_admissible(curve: &Curve, knots: &[f64], keep_domain: bool) -> bool {
+    let old = curve.knots();
+    let p = curve.degree();
+    let n = curve.control_points().len() - 1;
+    if knots.iter().any(|u| !u.is_finite()) || knots.windows(2).any(|w| w[0] > w[1]) {
+        return false;
+    }
+    if knots[p] >= knots[n + 1] {
+        return false;
+    }
+    let count = |vector: &[f64], value: f64| vector.iter().filter(|&&u| u == value).count();
+    if keep_domain
+        && [p, n + 1]
+            .into_iter()
+            .any(|i| knots[i] != old[i] || count(knots, knots[i]) > count(old, old[i]).max(p + 1))
+    {
+        return false;
+    }
+    let (lo, hi) = (knots[p], knots[n + 1]);
+    let mut start = 0;
+    while start < knots.len() {
+        let value = knots[start];
+        let mut end = start;
+        while end < knots.len() && knots[end] == value {
+            end += 1;
+        }
+        if value > lo && value < hi && end - start > p.max(count(old, value)) {
+            return false;
+        }
+        start = end;
+    }
+    true
+}
+
+/// [`KnotSolution::conditioning`] of the local knots `knots` with `unknowns` solved: the
+/// smallest singular value of `J · diag(room)`, over the extent of the local poles (the plane
+/// part of `J` for pairs on a 3D curve).
+fn conditioning(local: &LocalProblem, knots: &[f64], unknowns: &[usize]) -> f64 {
+    if unknowns.is_empty() {
+        return 0.0;
+    }
+    let (_, partials) = local.point_and_partials(knots, unknowns);
+    let q = local.degree;
+    let room = |m: usize| {
+        let below = (0..m).rev().find(|i| !unknowns.contains(i)).unwrap_or(0);
+        let above = (m + 1..=2 * q + 1)
+            .find(|i| !unknowns.contains(i))
+            .unwrap_or(2 * q + 1);
+        local.knots[above] - local.knots[below]
+    };
+    let columns: Vec<Point> = unknowns
+        .iter()
+        .enumerate()
+        .map(|(k, &m)| partials[k].map(|v| v * room(m)))
+        .collect();
+    let poles: Vec<Point> = local
+        .poles
+        .iter()
+        .map(|h| [h[0] / h[3], h[1] / h[3], h[2] / h[3]])
+        .collect();
+    let size = extent(&poles);
+    smallest_singular_value(&columns) / size
+}
+
+/// The smallest singular value of the 3 × k matrix with columns `columns` (k = 2 or 3): the
+/// square root of the Gram matrix's smallest eigenvalue.
+fn smallest_singular_value(columns: &[Point]) -> f64 {
+    let k = columns.len();
+    let gram = |a: usize, b: usize| dot(columns[a], columns[b]);
+    let eigenvalue = if k == 2 {
+        let (a, b, c) = (gram(0, 0), gram(0, 1), gram(1, 1));
+        let mean = 0.5 * (a + c);
+        let radius = (0.25 * (a - c) * (a - c) + b * b).sqrt();
+        // The smaller root, computed as det / larger to keep its accuracy.
+        let larger = mean + radius;
+        if larger > 0.0 {
+            (a * c - b * b) / larger
+        } else {
+            0.0
+        }
+    } else {
+        // Symmetric 3 × 3: the trigonometric formula for the smallest eigenvalue.
+        let m = [
+            [gram(0, 0), gram(0, 1), gram(0, 2)],
+            [gram(1, 0), gram(1, 1), gram(1, 2)],
+            [gram(2, 0), gram(2, 1), gram(2, 2)],
+        ];
+        let trace = m[0][0] + m[1][1] + m[2][2];
+        let mean = trace / 3.0;
+        let off = m[0][1] * m[0][1] + m[0][2] * m[0][2] + m[1][2] * m[1][2];
+        let spread = ((m[0][0] - mean).powi(2)
+            + (m[1][1] - mean).powi(2)
+            + (m[2][2] - mean).powi(2)
+            + 2.0 * off)
+            / 6.0;
+        let s = spread.sqrt();
+        if s == 0.0 {
+            mean
+        } else {
+            let b = |i: usize, j: usize| (m[i][j] - if i == j { mean } else { 0.0 }) / s;
+            let det = b(0, 0) * (b(1, 1) * b(2, 2) - b(1, 2) * b(2, 1))
+                - b(0, 1) * (b(1, 0) * b(2, 2) - b(1, 2) * b(2, 0))
+                + b(0, 2) * (b(1, 0) * b(2, 1) - b(1, 1) * b(2, 0));
+            let phi = (0.5 * det).clamp(-1.0, 1.0).acos() / 3.0;
+            mean + 2.0 * s * (phi + 2.0 * std::f64::consts::PI / 3.0).cos()
+        }
+    };
+    eigenvalue.max(0.0).sqrt()
+}
