@@ -12,6 +12,12 @@
 //!   Bernstein coefficients are `d_ij − B(i/p, j/q)` (a bilinear function elevated); rational,
 //!   `S − B = (X − W B) / W` and `X − W B` is a polynomial of bidegree `(p + 1, q + 1)`, so
 //!   `ε₁ = max |coefficient of X − W B| / min (weight coefficient)` (positive weights).
+//!   Sharper when the cell bends gently: `S − B` (or `X − W B`) vanishes at the corners, and
+//!   bilinear interpolation of a function `f` on the unit square errs by at most
+//!   `(max |f_ss| + max |f_tt|) / 8` (linear interpolation in `s`, then in `t`, each within
+//!   `h² max |f''| / 8`, the second not enlarging the first's error); for a Bézier patch
+//!   `max |f_ss| <= p (p − 1) max |Δ²_s d|` over its coefficients. So `ε₁` is the smaller of the
+//!   two (a quadratic's coefficient bound is twice the second-difference one).
 //! * `|B − L_B| <= |T| · max_e |Δs_e Δt_e| / 4` with `T = P00 − P10 − P01 + P11` the twist:
 //!   `B − L_B = T (st − L(st))`, and `st − L(st)` is a quadratic with an indefinite Hessian,
 //!   so its extremes over a triangle lie on the edges, where it is `−τ(1−τ) Δs Δt`. For the
@@ -134,6 +140,13 @@ impl Cell {
         let off = |(lo, hi): (f64, f64)| 2.0 * f64::EPSILON * lo.abs().max(hi.abs()) / (hi - lo);
         let rounding =
             spread * (p as f64 * steps[0] * off(self.u) + q as f64 * steps[1] * off(self.v));
+        // The second-difference bound of bilinear interpolation (module docs), sharper than the
+        // coefficients' for low degrees' bending (a quadratic's by half).
+        let bilinear_bound = if rational {
+            bilinear_bound
+        } else {
+            bilinear_bound.min((bends[0] + bends[1]) / 8.0)
+        };
         CellBounds {
             bilinear: bilinear_bound,
             twist: norm(twist),
@@ -247,12 +260,35 @@ fn rational_bilinear_bound(net: &[[f64; 4]], (p, q): (usize, usize), corners: &[
     let mut largest = 0.0f64;
     for k in 0..=m {
         for l in 0..=n {
-            let value = difference[k * wide + l];
-            largest = largest.max(norm(value) / (BINOMIAL[m][k] * BINOMIAL[n][l]));
+            let value = &mut difference[k * wide + l];
+            let scale = BINOMIAL[m][k] * BINOMIAL[n][l];
+            for c in value.iter_mut() {
+                *c /= scale;
+            }
+            largest = largest.max(norm(*value));
         }
     }
+    // `X − W B` vanishes at the corners, so its bilinear interpolant is 0 and the
+    // second-difference bound applies to it as well (module docs).
+    let mut second = [0.0f64; 2];
+    for k in 0..=m {
+        for l in 0..=n {
+            let at = |k: usize, l: usize| difference[k * wide + l];
+            if k >= 1 && k < m {
+                let d: Point =
+                    std::array::from_fn(|c| at(k + 1, l)[c] - 2.0 * at(k, l)[c] + at(k - 1, l)[c]);
+                second[0] = second[0].max(norm(d));
+            }
+            if l >= 1 && l < n {
+                let d: Point =
+                    std::array::from_fn(|c| at(k, l + 1)[c] - 2.0 * at(k, l)[c] + at(k, l - 1)[c]);
+                second[1] = second[1].max(norm(d));
+            }
+        }
+    }
+    let bending = ((m * (m - 1)) as f64 * second[0] + (n * (n - 1)) as f64 * second[1]) / 8.0;
     let smallest_weight = net.iter().map(|h| h[3]).fold(f64::INFINITY, f64::min);
-    largest / smallest_weight
+    largest.min(bending) / smallest_weight
 }
 
 impl Surface {
