@@ -30,6 +30,7 @@ mod regions_constraints;
 mod shape;
 mod shutdown;
 mod surface_errors;
+mod surface_files;
 mod surface_mesh;
 mod surface_picking;
 mod surface_toolkit;
