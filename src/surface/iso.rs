@@ -1,5 +1,5 @@
 //! Iso-curves: the curve `u ↦ S(u, ṽ)` (or `v ↦ S(ũ, v)`) as a curve object, the bridge by
-//! which the curves' methods act on a surface (MATH.md §8.5, the iso-curve reduction).
+//! which the curves' methods act on a surface (docs/method.md §39).
 //!
 //! With `v` held at `ṽ`, `S(u, ṽ) = Σ_i N_i(u) W_i D_i / Σ_i N_i(u) W_i` with
 //! `W_i = Σ_j M_j(ṽ) w_ij` and `D_i = Σ_j M_j(ṽ) w_ij d_ij / W_i`: the curve over the `u`
