@@ -123,3 +123,47 @@ fn iso_curves_insertion_and_pieces_are_the_exact_surface() {
         &failures[..failures.len().min(8)]
     );
 }
+
+proptest::proptest! {
+    #![proptest_config(proptest::test_runner::Config { cases: 48, ..crate::config() })]
+
+    /// Random surfaces (degrees 1–7 in each direction, rational, coincident knots, tiny
+    /// spans): the iso-curves, the surface after inserting a value in each direction (twice
+    /// in `u` where the degree allows) and the pieces of a split in `v` are the exact surface.
+    #[test]
+    fn random_surfaces_keep_their_shape_through_iso_curves_insertion_and_split(
+        data in crate::generators::surface_data(),
+        s in 0.05..0.95f64,
+        t in 0.05..0.95f64,
+    ) {
+        let surface = data.surface();
+        let [(u0, u1), (v0, v1)] = surface.domain();
+        let (u, v) = (u0 + s * (u1 - u0), v0 + t * (v1 - v0));
+        let mut failures = Vec::new();
+        let mut rng = SplitMix64::new(s.to_bits() ^ t.to_bits());
+        let along_u = surface.iso_curve(Direction::V, v);
+        let along_v = surface.iso_curve(Direction::U, u);
+        for _ in 0..POINTS {
+            let (a, b) = random_pair(&surface, &mut rng);
+            check(&data, (a, v), along_u.point(a).unwrap(), "iso-curve in u", &mut failures);
+            check(&data, (u, b), along_v.point(b).unwrap(), "iso-curve in v", &mut failures);
+        }
+        let knots_u = if surface.u().degree() >= 2 { vec![u, u] } else { vec![u] };
+        if let Ok(refined) = surface.insert_knots(&knots_u, &[v], usize::MAX) {
+            for _ in 0..POINTS {
+                let pair = random_pair(&surface, &mut rng);
+                check(&data, pair, refined.point(pair.0, pair.1), "refined", &mut failures);
+            }
+        }
+        // A cut strictly inside the domain (a value at a knot of full multiplicity may be
+        // refused; the others must succeed).
+        if let Ok(pieces) = surface.split(Direction::V, &[v], 10, usize::MAX) {
+            for piece in &pieces {
+                let [_, (b0, b1)] = piece.domain();
+                let pair = (rng.range(u0, u1), rng.range(b0, b1));
+                check(&data, pair, piece.point(pair.0, pair.1), "piece", &mut failures);
+            }
+        }
+        proptest::prop_assert!(failures.is_empty(), "{:#?}", failures);
+    }
+}
