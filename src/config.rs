@@ -80,6 +80,14 @@ pub struct Config {
     #[arg(long, env = "KNOTSHAPE_MAX_FIT_POINTS", default_value_t = Limits::DEFAULT.max_fit_points, global = true)]
     pub max_fit_points: usize,
 
+    /// Largest number of control points per surface, rows × points per row (more: 422).
+    #[arg(long, env = "KNOTSHAPE_MAX_SURFACE_CONTROL_POINTS", default_value_t = Limits::DEFAULT.max_surface_control_points, global = true)]
+    pub max_surface_control_points: usize,
+
+    /// Largest number of triangles in one `/v1/surfaces/tessellate` answer (more needed: 422).
+    #[arg(long, env = "KNOTSHAPE_MAX_TRIANGLES", default_value_t = Limits::DEFAULT.max_triangles, global = true)]
+    pub max_triangles: usize,
+
     /// Time a request may take, in milliseconds, before it is answered with 503.
     #[arg(
         long,
@@ -199,6 +207,8 @@ impl Default for Config {
             max_file_bytes: Limits::DEFAULT.max_file_bytes,
             max_file_entities: Limits::DEFAULT.max_file_entities,
             max_fit_points: Limits::DEFAULT.max_fit_points,
+            max_surface_control_points: Limits::DEFAULT.max_surface_control_points,
+            max_triangles: Limits::DEFAULT.max_triangles,
             request_timeout_ms: 10_000,
             concurrency_limit: 64,
             retry_after_secs: 1,
@@ -226,6 +236,8 @@ impl Config {
             max_file_bytes: self.max_file_bytes,
             max_file_entities: self.max_file_entities,
             max_fit_points: self.max_fit_points,
+            max_surface_control_points: self.max_surface_control_points,
+            max_triangles: self.max_triangles,
         }
     }
 
@@ -334,11 +346,18 @@ pub struct Limits {
     pub max_file_entities: usize,
     /// Points per interpolate or approximate request.
     pub max_fit_points: usize,
+    /// Control points per surface.
+    pub max_surface_control_points: usize,
+    /// Triangles per tessellation answer.
+    pub max_triangles: usize,
 }
 
 impl Limits {
     /// The defaults: 1 MiB bodies, 10 000 control points, 10 000 parameters, derivatives up to
-    /// order 8, 2 000 vertices per polygon, files of 1 MiB and 100 000 entities, 10 000 points to fit.
+    /// order 8, 2 000 vertices per polygon, files of 1 MiB and 100 000 entities, 10 000 points to
+    /// fit, 10 000 control points per surface (the largest of 898 real CAD surfaces has 2 002;
+    /// a net that large needs about as many bytes as the body limit allows) and 100 000
+    /// triangles per mesh (about 10 MB of JSON).
     pub const DEFAULT: Limits = Limits {
         max_body_bytes: 1024 * 1024,
         max_control_points: 10_000,
@@ -348,6 +367,8 @@ impl Limits {
         max_file_bytes: 1024 * 1024,
         max_file_entities: 100_000,
         max_fit_points: 10_000,
+        max_surface_control_points: 10_000,
+        max_triangles: 100_000,
     };
 }
 
@@ -430,6 +451,16 @@ mod tests {
         assert_eq!(parsed.api_key.as_ref().unwrap().as_bytes(), b"s3cret");
         assert_eq!(parsed.cors_allow_origins.len(), 2);
         assert_eq!(parsed.limits().max_parameters, 5);
+        let surfaces = Config::try_parse_from([
+            "knotshape",
+            "--max-surface-control-points",
+            "64",
+            "--max-triangles",
+            "1000",
+        ])
+        .unwrap();
+        assert_eq!(surfaces.limits().max_surface_control_points, 64);
+        assert_eq!(surfaces.limits().max_triangles, 1000);
     }
 
     #[test]

@@ -6,6 +6,7 @@ pub mod http;
 pub mod interchange;
 pub mod shape;
 pub mod spline;
+pub mod surface;
 pub mod telemetry;
 
 pub use http::{app, app_with_readiness, openapi, openapi_json};

@@ -72,16 +72,20 @@ fn structured_cases_pass_the_fuzz_check() {
     assert!(findings.is_empty(), "{}", findings.join("\n"));
 }
 
-/// The file readers' check (`knotshape_fuzzing::files`) on the committed corpora of the
-/// `step_import` and `dxf_import` targets (seeds and the fuzzers' inputs), and on the real STEP
-/// files of tests/data/interop: no panic, and what is read writes and reads back unchanged.
+/// The file readers' checks (`knotshape_fuzzing::files`) on the committed corpora of the
+/// `step_import`, `step_surfaces` and `dxf_import` targets (seeds and the fuzzers' inputs), and
+/// on the real STEP files of tests/data/interop: no panic, and what is read (curves, surfaces)
+/// writes and reads back unchanged.
 #[test]
 fn file_corpora_pass_the_fuzz_check() {
-    use knotshape_fuzzing::files::{check_dxf, check_step};
+    use knotshape_fuzzing::files::{check_dxf, check_step, check_step_surfaces};
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     type Check = fn(&[u8]) -> Result<(), String>;
-    let targets: [(&str, Check, usize); 2] =
-        [("step_import", check_step, 3), ("dxf_import", check_dxf, 2)];
+    let targets: [(&str, Check, usize); 3] = [
+        ("step_import", check_step, 3),
+        ("step_surfaces", check_step_surfaces, 8),
+        ("dxf_import", check_dxf, 2),
+    ];
     for (target, check, at_least) in targets {
         let mut files: Vec<_> = std::fs::read_dir(root.join("fuzz/corpus").join(target))
             .expect("the committed corpus")
@@ -93,9 +97,10 @@ fn file_corpora_pass_the_fuzz_check() {
             "{target}: only {} corpus files",
             files.len()
         );
-        if target == "step_import" {
+        if target.starts_with("step") {
             files.push(root.join("tests/data/interop/splinecage.stp"));
             files.push(root.join("tests/data/interop/screw.step"));
+            files.push(root.join("tests/data/interop/as1-oc-214.stp"));
         }
         for file in &files {
             let input = std::fs::read(file).unwrap();

@@ -75,6 +75,25 @@ impl<T: Serialize> IntoResponse for ApiJson<T> {
     }
 }
 
+/// A JSON answer that holds `null` on purpose (a surface's normal where it has none). The
+/// handler checks that every number in it is finite before it builds one (and answers the
+/// 422 of an overflow itself), so no `null` stands for an overflow and the body is not
+/// scanned for one, as [`ApiJson`] scans.
+#[derive(Debug, Clone)]
+pub struct JsonWithNulls<T>(pub T);
+
+impl<T: Serialize> IntoResponse for JsonWithNulls<T> {
+    fn into_response(self) -> Response {
+        let mut bytes = Vec::with_capacity(RESPONSE_CAPACITY);
+        match serde_json::to_writer(&mut bytes, &self.0) {
+            Ok(()) => ([(CONTENT_TYPE, "application/json")], bytes).into_response(),
+            Err(error) => {
+                ApiError::Internal(format!("response serialization: {error}")).into_response()
+            }
+        }
+    }
+}
+
 /// Initial capacity of a response body buffer, in bytes.
 pub const RESPONSE_CAPACITY: usize = 2048;
 

@@ -16,6 +16,7 @@ pub mod regions_svg;
 pub mod routes;
 pub mod server;
 pub mod state;
+pub mod surface;
 pub mod svg_path;
 pub mod wire;
 
@@ -40,6 +41,7 @@ use crate::config::Config;
 use error::{FieldError, PROBLEM_JSON, Problem};
 use routes::{closest, curves, editor, files, ops, shape, toolkit};
 use routes::{from_points, length, reshape};
+use routes::{surface_closest, surface_mesh, surface_toolkit, surfaces};
 pub use server::{Server, shutdown_signal};
 pub use state::{AppState, Readiness};
 
@@ -117,6 +119,13 @@ fn v1_routes() -> OpenApiRouter<AppState> {
         .routes(routes!(shape::membership))
         .routes(routes!(shape::regions))
         .routes(routes!(shape::solve))
+        // Surfaces (fourth release).
+        .routes(routes!(surfaces::evaluate))
+        .routes(routes!(surface_closest::closest_point))
+        .routes(routes!(surface_toolkit::iso_curve))
+        .routes(routes!(surface_toolkit::insert_knots))
+        .routes(routes!(surface_toolkit::split))
+        .routes(routes!(surface_mesh::tessellate))
 }
 
 /// Probe, metrics and document routes (always open).
@@ -187,6 +196,7 @@ pub fn openapi_json() -> String {
     ),
     tags(
         (name = "curves", description = "Curve evaluation, polylines, knot insertion, Bézier pieces and the knot-moving envelope; curves through and near points, degree elevation, knot removal, splitting, arc length and curvature"),
+        (name = "surfaces", description = "B-spline/NURBS surfaces: points, partials, normals and curvature, closest points, iso-curves, knot insertion, splitting and certified triangle meshes"),
         (name = "shape", description = "Shape modification by knot pairs Ω1–Ω6 (Tornai; Juhász & Hoffmann), control points and weights, under constraints"),
         (name = "operations", description = "Probes, metrics and this document; never need the API key"),
     ),
@@ -290,6 +300,6 @@ mod tests {
     fn the_document_names_every_route() {
         let document = openapi();
         let paths: Vec<&String> = document.paths.paths.keys().collect();
-        assert_eq!(paths.len(), 14 + 6, "{paths:?}");
+        assert_eq!(paths.len(), 14 + 6 + 6, "{paths:?}");
     }
 }

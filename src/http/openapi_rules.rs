@@ -62,6 +62,11 @@ const ARRAY_LENGTHS: &[(&str, &str, usize, u64, u64)] = &[
     ("InterpolateRequest", "end_tangents", 1, 2, 3),
     ("ApproximateRequest", "points", 1, 2, 3),
     ("LengthRequest", "range", 0, 2, 2),
+    // Surfaces (fourth release): 3D points, pairs, ranges of two pairs.
+    ("SurfaceBody", "control_points", 2, 3, 3),
+    ("SurfaceClosestPointRequest", "points", 1, 3, 3),
+    ("SurfaceClosestPointRequest", "range", 0, 2, 2),
+    ("SurfaceClosestPointRequest", "range", 1, 2, 2),
 ];
 
 /// `(schema, property)` of lists that need at least one entry, none repeated.
@@ -85,6 +90,8 @@ const POSITIVE: &[(&str, &str, usize)] = &[
     ("RegionsRequest", "tolerance", 0),
     ("EditableAt", "spacing", 0),
     ("ApproximateRequest", "tolerance", 0),
+    ("SurfaceBody", "weights", 2),
+    ("TessellateRequest", "tolerance", 0),
 ];
 
 /// Writes the rules into `document` (an OpenAPI 3.1 document as JSON).

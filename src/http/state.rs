@@ -9,6 +9,7 @@ use tokio::sync::Semaphore;
 use super::metrics::Metrics;
 use crate::config::{ApiKey, Config, Limits};
 use crate::spline::{CurveLimits, MAX_DEGREE};
+use crate::surface::SurfaceLimits;
 
 /// Whether the service takes new work; turns false once shutdown begins. Cheap to clone;
 /// clones share the flag.
@@ -62,6 +63,8 @@ pub struct SharedState {
     pub limits: Limits,
     /// The limits the spline core applies while validating curves.
     pub curve_limits: CurveLimits,
+    /// The limits the surface core applies while validating surfaces.
+    pub surface_limits: SurfaceLimits,
     /// When set, `/v1` routes need `Authorization: Bearer <key>`.
     pub api_key: Option<Arc<ApiKey>>,
     /// Permits for `/v1` requests served at once.
@@ -85,6 +88,10 @@ impl AppState {
             curve_limits: CurveLimits {
                 max_degree: MAX_DEGREE,
                 max_control_points: limits.max_control_points,
+            },
+            surface_limits: SurfaceLimits {
+                max_degree: MAX_DEGREE,
+                max_control_points: limits.max_surface_control_points,
             },
             api_key: config.api_key.clone().map(Arc::new),
             admission: Arc::new(Semaphore::new(

@@ -312,7 +312,11 @@ pub fn read(text: &str, limits: &FileLimits) -> Result<Imported, FileError> {
             "the file ends without 0/EOF (truncated?)",
         ));
     }
-    Ok(Imported { curves, skipped })
+    Ok(Imported {
+        curves,
+        surfaces: Vec::new(),
+        skipped,
+    })
 }
 
 /// Fewest decimals of a written knot tolerance: `1e-10`, what ezdxf writes itself.

@@ -1,4 +1,5 @@
-//! Curve files: STEP (ISO 10303-21) and DXF text in, core curves out, and the reverse. Pure:
+//! Curve (and surface) files: STEP (ISO 10303-21) and DXF text in, core curves out, and the
+//! reverse; meshes out as binary glTF. Pure:
 //! no HTTP types; every loop over the file's content is bounded by [`FileLimits`].
 //!
 //! Untrusted input: the text's size is checked before anything is read, the number of entities
@@ -7,10 +8,12 @@
 //! anywhere is an error as a whole: no partial answer.
 
 pub mod dxf;
+pub mod gltf;
 mod numbers;
 pub mod step;
 
 use crate::spline::{Curve, CurveError, CurveLimits};
+use crate::surface::{Surface, SurfaceError, SurfaceLimits};
 
 /// Limits applied to a file read (the service makes them configurable).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -21,6 +24,8 @@ pub struct FileLimits {
     pub max_entities: usize,
     /// The limits each curve of the file must respect.
     pub curve_limits: CurveLimits,
+    /// The limits each surface of the file must respect.
+    pub surface_limits: SurfaceLimits,
 }
 
 impl Default for FileLimits {
@@ -29,6 +34,7 @@ impl Default for FileLimits {
             max_bytes: 1024 * 1024,
             max_entities: 100_000,
             curve_limits: CurveLimits::default(),
+            surface_limits: SurfaceLimits::default(),
         }
     }
 }
@@ -47,12 +53,23 @@ pub struct ImportedCurve {
     pub source: String,
 }
 
+/// One B-spline surface of a file and where it came from.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ImportedSurface {
+    /// The surface (STEP's distinct knots with multiplicities in both directions).
+    pub surface: Surface,
+    /// The entity: `#N`.
+    pub source: String,
+}
+
 /// Everything a read finds.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Imported {
     /// The file's B-spline curves, in the order of the file.
     pub curves: Vec<ImportedCurve>,
-    /// The other curve entities (and DXF splines given by fit points only).
+    /// The file's B-spline surfaces, in the order of the file (STEP only).
+    pub surfaces: Vec<ImportedSurface>,
+    /// The other curve and surface entities (and DXF splines given by fit points only).
     pub skipped: usize,
 }
 
@@ -74,6 +91,9 @@ pub enum FileError {
     /// A B-spline entity's data break a rule of curves.
     #[error("{entity}: {error}")]
     InvalidCurve { entity: String, error: CurveError },
+    /// A B-spline surface entity's data break a rule of surfaces.
+    #[error("{entity}: {error}")]
+    InvalidSurface { entity: String, error: SurfaceError },
 }
 
 /// The [`FileError::Malformed`] at `line`.
@@ -103,6 +123,24 @@ fn exportable_curve(curve: &Curve) -> Curve {
     } else {
         curve.clone()
     }
+}
+
+/// The surface a file holds for `surface`: itself, or with each periodic direction cut open
+/// to the clamped surface over its period (as [`exportable_curve`] does for the curves
+/// through its columns or rows).
+fn exportable_surface(surface: &Surface) -> Surface {
+    let mut out = surface.clone();
+    if out.u().is_periodic() {
+        let columns: Vec<Curve> = (0..out.v().count())
+            .map(|j| out.column(j).clamped())
+            .collect();
+        out = out.with_columns(&columns);
+    }
+    if out.v().is_periodic() {
+        let rows: Vec<Curve> = (0..out.u().count()).map(|i| out.row(i).clamped()).collect();
+        out = out.with_rows(&rows);
+    }
+    out
 }
 
 /// A curve's full knot vector made acceptable to readers that allow at most `degree + 1`

@@ -1,8 +1,10 @@
-//! STEP (ISO 10303-21, "Part 21") B-spline curves: `B_SPLINE_CURVE_WITH_KNOTS` and its
-//! rational complex form `( BOUNDED_CURVE() B_SPLINE_CURVE(..) B_SPLINE_CURVE_WITH_KNOTS(..)
-//! CURVE() GEOMETRIC_REPRESENTATION_ITEM() RATIONAL_B_SPLINE_CURVE(..)
-//! REPRESENTATION_ITEM(..) )`, read from any exchange file and written inside a wireframe
-//! shape representation that Open CASCADE's `STEPControl_Reader` transfers.
+//! STEP (ISO 10303-21, "Part 21") B-spline curves and surfaces: `B_SPLINE_CURVE_WITH_KNOTS`
+//! and its rational complex form `( BOUNDED_CURVE() B_SPLINE_CURVE(..)
+//! B_SPLINE_CURVE_WITH_KNOTS(..) CURVE() GEOMETRIC_REPRESENTATION_ITEM()
+//! RATIONAL_B_SPLINE_CURVE(..) REPRESENTATION_ITEM(..) )`, `B_SPLINE_SURFACE_WITH_KNOTS` and its
+//! rational complex form likewise (`B_SPLINE_SURFACE`, `RATIONAL_B_SPLINE_SURFACE`), read from
+//! any exchange file and written inside a shape representation that Open CASCADE's
+//! `STEPControl_Reader` transfers (curves to edges, surfaces to faces).
 //!
 //! Hand-written, on purpose: the Rust STEP crates read whole application protocols (large
 //! generated schemas) or do not bound their work on hostile input; these few entities need a
@@ -12,9 +14,10 @@
 //! lines, then their tests): each is the other's check, entity by entity.
 //!
 //! Reading: the syntax of the whole file is checked (header, data sections, every instance),
-//! only `CARTESIAN_POINT`s and the B-spline curves are kept, and every curve's control points
-//! are resolved to its points. Other curve entities (`LINE`, `CIRCLE`, `TRIMMED_CURVE`, other
-//! B-spline forms, …) are counted as skipped. Equal consecutive knots are merged (summing
+//! only `CARTESIAN_POINT`s and the B-spline curves and surfaces are kept, and every control
+//! point reference is resolved to its point. Other curve and surface entities (`LINE`,
+//! `CIRCLE`, `TRIMMED_CURVE`, `PLANE`, `CYLINDRICAL_SURFACE`, other B-spline forms, …) are
+//! counted as skipped. Equal consecutive knots are merged (summing
 //! their multiplicities), which some writers emit and the curve is the same with.
 
 mod syntax;
@@ -25,10 +28,11 @@ use syntax::{Parser, Record, Token, Value, describe};
 
 use super::numbers::real;
 use super::{
-    FileError, FileLimits, Imported, ImportedCurve, check_size, exportable_curve, exportable_knots,
-    malformed,
+    FileError, FileLimits, Imported, ImportedCurve, ImportedSurface, check_size, exportable_curve,
+    exportable_knots, exportable_surface, malformed,
 };
 use crate::spline::{Curve, KnotForm, distinct_knots};
+use crate::surface::{Direction, Surface};
 
 /// The curve entity types that are counted as skipped (ISO 10303-42 curves other than the
 /// B-spline curves with knots that are read).
@@ -62,6 +66,41 @@ const OTHER_CURVES: &[&str] = &[
     "UNIFORM_CURVE",
 ];
 
+/// The surface entity types that are counted as skipped (ISO 10303-42 surfaces other than the
+/// B-spline surfaces with knots that are read).
+const OTHER_SURFACES: &[&str] = &[
+    "BEZIER_SURFACE",
+    "B_SPLINE_SURFACE",
+    "CONICAL_SURFACE",
+    "CURVE_BOUNDED_SURFACE",
+    "CYLINDRICAL_SURFACE",
+    "DEGENERATE_TOROIDAL_SURFACE",
+    "OFFSET_SURFACE",
+    "ORIENTED_SURFACE",
+    "PLANE",
+    "QUASI_UNIFORM_SURFACE",
+    "RATIONAL_B_SPLINE_SURFACE",
+    "RECTANGULAR_COMPOSITE_SURFACE",
+    "RECTANGULAR_TRIMMED_SURFACE",
+    "SPHERICAL_SURFACE",
+    "SURFACE_OF_LINEAR_EXTRUSION",
+    "SURFACE_OF_REVOLUTION",
+    "SURFACE_REPLICA",
+    "TOROIDAL_SURFACE",
+    "UNIFORM_SURFACE",
+];
+
+/// A B-spline surface entity as read, before its points are resolved.
+struct SurfaceEntity<'a> {
+    id: u64,
+    line: usize,
+    degrees: [Value<'a>; 2],
+    points: Value<'a>,
+    multiplicities: [Value<'a>; 2],
+    knots: [Value<'a>; 2],
+    weights: Option<Value<'a>>,
+}
+
 /// A B-spline curve entity as read, before its points are resolved.
 struct CurveEntity<'a> {
     id: u64,
@@ -80,10 +119,11 @@ struct Found<'a> {
     /// Every instance name, with whether it is a point (for the error of a wrong reference).
     names: HashMap<u64, bool>,
     curves: Vec<CurveEntity<'a>>,
+    surfaces: Vec<SurfaceEntity<'a>>,
     skipped: usize,
 }
 
-/// Reads every B-spline curve of a STEP exchange file.
+/// Reads every B-spline curve and surface of a STEP exchange file.
 pub fn read(text: &str, limits: &FileLimits) -> Result<Imported, FileError> {
     check_size(text, limits)?;
     let mut parser = Parser::new(text);
@@ -156,8 +196,14 @@ pub fn read(text: &str, limits: &FileLimits) -> Result<Imported, FileError> {
         .iter()
         .map(|entity| build_curve(entity, &found, limits))
         .collect::<Result<_, _>>()?;
+    let surfaces = found
+        .surfaces
+        .iter()
+        .map(|entity| build_surface(entity, &found, limits))
+        .collect::<Result<_, _>>()?;
     Ok(Imported {
         curves,
+        surfaces,
         skipped: found.skipped,
     })
 }
@@ -233,8 +279,8 @@ fn data_section<'a>(
     }
 }
 
-/// Keeps what an instance holds for the curves: a point's coordinates, a B-spline curve's
-/// parameters; counts the other curves.
+/// Keeps what an instance holds for the curves and surfaces: a point's coordinates, a
+/// B-spline curve's or surface's parameters; counts the other curves and surfaces.
 fn keep<'a>(
     id: u64,
     line: usize,
@@ -335,14 +381,101 @@ fn keep<'a>(
         found.curves.push(entity);
         return Ok(());
     }
+    if let Some(with_knots) = has("B_SPLINE_SURFACE_WITH_KNOTS") {
+        found
+            .surfaces
+            .push(surface_entity(id, line, records, with_knots)?);
+        return Ok(());
+    }
     if records.iter().any(|r| {
         OTHER_CURVES
             .iter()
+            .chain(OTHER_SURFACES)
             .any(|c| r.keyword.eq_ignore_ascii_case(c))
     }) {
         found.skipped += 1;
     }
     Ok(())
+}
+
+/// The parameters of a B-spline surface entity, simple (13 parameters) or complex
+/// (`B_SPLINE_SURFACE` with 7, `B_SPLINE_SURFACE_WITH_KNOTS` with 5, optionally
+/// `RATIONAL_B_SPLINE_SURFACE` with 1).
+fn surface_entity<'a>(
+    id: u64,
+    line: usize,
+    records: Vec<Record<'a>>,
+    with_knots: usize,
+) -> Result<SurfaceEntity<'a>, FileError> {
+    if records.len() == 1 {
+        let parameters = records
+            .into_iter()
+            .next()
+            .map(|r| r.parameters)
+            .unwrap_or_default();
+        return match <[Value; 13]>::try_from(parameters) {
+            Ok([_, du, dv, points, _, _, _, _, mu, mv, ku, kv, _]) => Ok(SurfaceEntity {
+                id,
+                line,
+                degrees: [du, dv],
+                points,
+                multiplicities: [mu, mv],
+                knots: [ku, kv],
+                weights: None,
+            }),
+            Err(_) => Err(malformed(
+                line,
+                format!("#{id}: B_SPLINE_SURFACE_WITH_KNOTS has 13 parameters"),
+            )),
+        };
+    }
+    let position = |name: &str| {
+        records
+            .iter()
+            .position(|r| r.keyword.eq_ignore_ascii_case(name))
+    };
+    let Some(base) = position("B_SPLINE_SURFACE") else {
+        return Err(malformed(
+            line,
+            format!(
+                "#{id}: a complex B_SPLINE_SURFACE_WITH_KNOTS needs its B_SPLINE_SURFACE record"
+            ),
+        ));
+    };
+    let rational = position("RATIONAL_B_SPLINE_SURFACE");
+    let mut records: Vec<Option<Record>> = records.into_iter().map(Some).collect();
+    let mut take = |index: usize, count: usize, name: &str| {
+        let parameters = records[index]
+            .take()
+            .map(|r| r.parameters)
+            .unwrap_or_default();
+        if parameters.len() == count {
+            Ok(parameters)
+        } else {
+            Err(malformed(
+                line,
+                format!("#{id}: {name} has {count} parameters here"),
+            ))
+        }
+    };
+    let [du, dv, points, _, _, _, _] = <[Value; 7]>::try_from(take(base, 7, "B_SPLINE_SURFACE")?)
+        .map_err(|_| malformed(line, "B_SPLINE_SURFACE"))?;
+    let [mu, mv, ku, kv, _] =
+        <[Value; 5]>::try_from(take(with_knots, 5, "B_SPLINE_SURFACE_WITH_KNOTS")?)
+            .map_err(|_| malformed(line, "B_SPLINE_SURFACE_WITH_KNOTS"))?;
+    let weights = match rational {
+        Some(index) => take(index, 1, "RATIONAL_B_SPLINE_SURFACE")?.pop(),
+        None => None,
+    };
+    Ok(SurfaceEntity {
+        id,
+        line,
+        degrees: [du, dv],
+        points,
+        multiplicities: [mu, mv],
+        knots: [ku, kv],
+        weights,
+    })
 }
 
 /// A number parameter (integers are numbers too).
@@ -425,6 +558,106 @@ fn build_curve<'v, 'a>(
     Ok(ImportedCurve { curve, source })
 }
 
+/// The surface of a B-spline surface entity, its points resolved (3D points only: a surface
+/// lives in space).
+fn build_surface(
+    entity: &SurfaceEntity<'_>,
+    found: &Found<'_>,
+    limits: &FileLimits,
+) -> Result<ImportedSurface, FileError> {
+    let (id, line) = (entity.id, entity.line);
+    let bad = |what: &str| malformed(line, format!("#{id}: {what}"));
+    let mut degrees = [0usize; 2];
+    for (slot, value) in degrees.iter_mut().zip(&entity.degrees) {
+        *slot = match *value {
+            Value::Integer(d) if d >= 0 => d as usize,
+            _ => return Err(bad("the degrees must be integers >= 0")),
+        };
+    }
+    let Value::List(rows) = &entity.points else {
+        return Err(bad(
+            "the control points must be a list of lists of references",
+        ));
+    };
+    // The point count is bounded by the file's entity count (each reference is a token).
+    let mut points: Vec<Vec<&[f64]>> = Vec::with_capacity(rows.len());
+    for row in rows {
+        let Value::List(references) = row else {
+            return Err(bad(
+                "the control points must be a list of lists of references",
+            ));
+        };
+        let mut out = Vec::with_capacity(references.len());
+        for reference in references {
+            let Value::Ref(point) = reference else {
+                return Err(bad(
+                    "the control points must be a list of lists of references",
+                ));
+            };
+            match (found.points.get(point), found.names.get(point)) {
+                (Some(coordinates), _) => out.push(coordinates.as_slice()),
+                (None, Some(_)) => return Err(bad(&format!("#{point} is not a CARTESIAN_POINT"))),
+                (None, None) => return Err(bad(&format!("#{point} is not defined in the file"))),
+            }
+        }
+        points.push(out);
+    }
+    if points.is_empty() {
+        return Err(bad("the control points must not be empty"));
+    }
+    let list_of = |value: &Value<'_>, what: &str| -> Result<Vec<f64>, FileError> {
+        match value {
+            Value::List(values) => values
+                .iter()
+                .map(number)
+                .collect::<Option<Vec<f64>>>()
+                .ok_or_else(|| bad(&format!("the {what} must be numbers"))),
+            _ => Err(bad(&format!("the {what} must be a list"))),
+        }
+    };
+    let mut directions = Vec::with_capacity(2);
+    for k in 0..2 {
+        let mut multiplicities = Vec::new();
+        let Value::List(values) = &entity.multiplicities[k] else {
+            return Err(bad("the knot multiplicities must be a list"));
+        };
+        for value in values {
+            match value {
+                Value::Integer(m) if *m >= 0 => multiplicities.push(*m as usize),
+                _ => return Err(bad("the knot multiplicities must be integers >= 0")),
+            }
+        }
+        let knots = list_of(&entity.knots[k], "knots")?;
+        directions.push(merged(&knots, &multiplicities));
+    }
+    let weights = match &entity.weights {
+        None => None,
+        Some(Value::List(rows)) => Some(
+            rows.iter()
+                .map(|row| list_of(row, "weights"))
+                .collect::<Result<Vec<Vec<f64>>, _>>()?,
+        ),
+        Some(_) => return Err(bad("the weights must be a list of lists")),
+    };
+    let source = format!("#{id}");
+    let form = |k: usize| KnotForm::Multiplicities {
+        knots: &directions[k].0,
+        multiplicities: &directions[k].1,
+    };
+    let surface = Surface::from_knot_forms(
+        (degrees[0], degrees[1]),
+        &points,
+        (form(0), form(1)),
+        weights.as_deref(),
+        &limits.surface_limits,
+    )
+    .map_err(|error| FileError::InvalidSurface {
+        entity: source.clone(),
+        error,
+    })?;
+    Ok(ImportedSurface { surface, source })
+}
+
 /// Equal consecutive knots merged into one, their multiplicities summed (a length mismatch is
 /// left for the curve's validation to name).
 fn merged(knots: &[f64], multiplicities: &[usize]) -> (Vec<f64>, Vec<usize>) {
@@ -445,17 +678,39 @@ fn merged(knots: &[f64], multiplicities: &[usize]) -> (Vec<f64>, Vec<usize>) {
     (out_knots, out_multiplicities)
 }
 
-/// A STEP exchange file (AP214, `AUTOMOTIVE_DESIGN`) holding `curves` in one
-/// `GEOMETRIC_CURVE_SET` of a `GEOMETRICALLY_BOUNDED_WIREFRAME_SHAPE_REPRESENTATION` of one
-/// product, as Open CASCADE writes wires: `STEPControl_Reader` transfers each curve to an
-/// edge. Numbers in full precision (the shortest digits that read back exactly); 2D curves
-/// with `z = 0`; a periodic curve as the clamped curve over its period (STEP has no periodic
-/// form); knots as distinct values with multiplicities. Lengths in millimetres.
-pub fn write(curves: &[Curve]) -> String {
+/// A STEP exchange file (AP214, `AUTOMOTIVE_DESIGN`) holding `curves` and `surfaces` as
+/// Open CASCADE writes geometry: curves alone in one `GEOMETRIC_CURVE_SET` of a
+/// `GEOMETRICALLY_BOUNDED_WIREFRAME_SHAPE_REPRESENTATION` of one product (each transferred to
+/// an edge by `STEPControl_Reader`); with surfaces, curves and surfaces in one
+/// `GEOMETRIC_SET` of a `GEOMETRICALLY_BOUNDED_SURFACE_SHAPE_REPRESENTATION` (each surface
+/// transferred to a face over its whole domain). Numbers in full precision (the shortest
+/// digits that read back exactly); 2D curves with `z = 0`; a periodic curve or surface
+/// direction as the clamped one over its period (STEP has no periodic form); knots as
+/// distinct values with multiplicities. Lengths in millimetres.
+pub fn write(curves: &[Curve], surfaces: &[Surface]) -> String {
     let mut out = String::new();
+    let (kind, representation, set) = if surfaces.is_empty() {
+        (
+            "curves",
+            "GEOMETRICALLY_BOUNDED_WIREFRAME_SHAPE_REPRESENTATION",
+            "GEOMETRIC_CURVE_SET",
+        )
+    } else {
+        (
+            "surfaces",
+            "GEOMETRICALLY_BOUNDED_SURFACE_SHAPE_REPRESENTATION",
+            "GEOMETRIC_SET",
+        )
+    };
     out.push_str("ISO-10303-21;\nHEADER;\n");
-    out.push_str("FILE_DESCRIPTION(('knotshape B-spline curves'),'2;1');\n");
-    out.push_str("FILE_NAME('curves.step','',(''),(''),'knotshape','knotshape','');\n");
+    if surfaces.is_empty() {
+        out.push_str("FILE_DESCRIPTION(('knotshape B-spline curves'),'2;1');\n");
+    } else {
+        out.push_str("FILE_DESCRIPTION(('knotshape B-spline curves and surfaces'),'2;1');\n");
+    }
+    out.push_str(&format!(
+        "FILE_NAME('{kind}.step','',(''),(''),'knotshape','knotshape','');\n"
+    ));
     out.push_str("FILE_SCHEMA(('AUTOMOTIVE_DESIGN { 1 0 10303 214 1 1 1 1 }'));\nENDSEC;\nDATA;\n");
     let preamble = [
         "#1=APPLICATION_PROTOCOL_DEFINITION('international standard','automotive_design',2000,#2);",
@@ -464,10 +719,10 @@ pub fn write(curves: &[Curve]) -> String {
         "#4=PRODUCT_DEFINITION_SHAPE('','',#5);",
         "#5=PRODUCT_DEFINITION('design','',#6,#9);",
         "#6=PRODUCT_DEFINITION_FORMATION('','',#7);",
-        "#7=PRODUCT('curves','curves','',(#8));",
+        "#7=PRODUCT('{kind}','{kind}','',(#8));",
         "#8=PRODUCT_CONTEXT('',#2,'mechanical');",
         "#9=PRODUCT_DEFINITION_CONTEXT('part definition',#2,'design');",
-        "#10=GEOMETRICALLY_BOUNDED_WIREFRAME_SHAPE_REPRESENTATION('curves',(#11,#15),#20);",
+        "#10={representation}('{kind}',(#11,#15),#20);",
         "#11=AXIS2_PLACEMENT_3D('',#12,#13,#14);",
         "#12=CARTESIAN_POINT('',(0.,0.,0.));",
         "#13=DIRECTION('',(0.,0.,1.));",
@@ -480,28 +735,37 @@ pub fn write(curves: &[Curve]) -> String {
         "#24=UNCERTAINTY_MEASURE_WITH_UNIT(LENGTH_MEASURE(1.E-7),#21,'distance_accuracy_value','confusion accuracy');",
     ];
     for line in preamble {
-        out.push_str(line);
+        out.push_str(
+            &line
+                .replace("{kind}", kind)
+                .replace("{representation}", representation),
+        );
         out.push('\n');
     }
     let mut next_id = 100u64;
-    let mut curve_ids = Vec::with_capacity(curves.len());
+    let mut item_ids = Vec::with_capacity(curves.len() + surfaces.len());
+    let mut fresh = || {
+        next_id += 1;
+        next_id - 1
+    };
+    let point = |out: &mut String, id: u64, point: &[f64]| {
+        out.push_str(&format!(
+            "#{id}=CARTESIAN_POINT('',({},{},{}));\n",
+            real(point[0]),
+            real(point[1]),
+            real(point.get(2).copied().unwrap_or(0.0))
+        ));
+        id
+    };
     for curve in curves.iter().map(exportable_curve) {
         let curve = &curve;
-        let first_point = next_id;
-        for (offset, point) in curve.control_points().iter().enumerate() {
-            out.push_str(&format!(
-                "#{}=CARTESIAN_POINT('',({},{},{}));\n",
-                first_point + offset as u64,
-                real(point[0]),
-                real(point[1]),
-                real(point[2])
-            ));
-        }
-        let point_ids: Vec<u64> =
-            (first_point..first_point + curve.control_points().len() as u64).collect();
-        let id = first_point + point_ids.len() as u64;
-        next_id = id + 1;
-        curve_ids.push(id);
+        let point_ids: Vec<u64> = curve
+            .control_points()
+            .iter()
+            .map(|p| point(&mut out, fresh(), p))
+            .collect();
+        let id = fresh();
+        item_ids.push(id);
         let (knots, multiplicities) = distinct_knots(&exportable_knots(curve));
         let points = joined(point_ids.iter().map(|id| format!("#{id}")));
         let multiplicities = joined(multiplicities.iter().map(usize::to_string));
@@ -519,8 +783,48 @@ pub fn write(curves: &[Curve]) -> String {
             }
         }
     }
-    let set = joined(curve_ids.iter().map(|id| format!("#{id}")));
-    out.push_str(&format!("#15=GEOMETRIC_CURVE_SET('curves',({set}));\n"));
+    for surface in surfaces.iter().map(exportable_surface) {
+        let (n_u, n_v) = (surface.u().count(), surface.v().count());
+        let rows: Vec<String> = (0..n_u)
+            .map(|i| {
+                let ids: Vec<u64> = (0..n_v)
+                    .map(|j| point(&mut out, fresh(), &surface.control_point(i, j)))
+                    .collect();
+                format!("({})", joined(ids.iter().map(|id| format!("#{id}"))))
+            })
+            .collect();
+        let id = fresh();
+        item_ids.push(id);
+        let points = rows.join(",");
+        let direction = |direction: Direction| {
+            let curve = match direction {
+                Direction::U => surface.column(0),
+                Direction::V => surface.row(0),
+            };
+            let (knots, multiplicities) = distinct_knots(&exportable_knots(&curve));
+            (
+                joined(multiplicities.iter().map(usize::to_string)),
+                joined(knots.iter().map(|&u| real(u))),
+            )
+        };
+        let ((mu, ku), (mv, kv)) = (direction(Direction::U), direction(Direction::V));
+        let (du, dv) = (surface.u().degree(), surface.v().degree());
+        if surface.is_rational() {
+            let weights = (0..n_u)
+                .map(|i| format!("({})", joined((0..n_v).map(|j| real(surface.weight(i, j))))))
+                .collect::<Vec<_>>()
+                .join(",");
+            out.push_str(&format!(
+                "#{id}=(BOUNDED_SURFACE() B_SPLINE_SURFACE({du},{dv},({points}),.UNSPECIFIED.,.F.,.F.,.F.) B_SPLINE_SURFACE_WITH_KNOTS(({mu}),({mv}),({ku}),({kv}),.UNSPECIFIED.) GEOMETRIC_REPRESENTATION_ITEM() RATIONAL_B_SPLINE_SURFACE(({weights})) REPRESENTATION_ITEM('') SURFACE());\n"
+            ));
+        } else {
+            out.push_str(&format!(
+                "#{id}=B_SPLINE_SURFACE_WITH_KNOTS('',{du},{dv},({points}),.UNSPECIFIED.,.F.,.F.,.F.,({mu}),({mv}),({ku}),({kv}),.UNSPECIFIED.);\n"
+            ));
+        }
+    }
+    let items = joined(item_ids.iter().map(|id| format!("#{id}")));
+    out.push_str(&format!("#15={set}('{kind}',({items}));\n"));
     out.push_str("ENDSEC;\nEND-ISO-10303-21;\n");
     out
 }
@@ -588,7 +892,7 @@ mod tests {
             &limits,
         )
         .unwrap();
-        let text = write(&[spatial.clone(), planar.clone()]);
+        let text = write(&[spatial.clone(), planar.clone()], &[]);
         let back = read(&text, &FileLimits::default()).unwrap();
         assert_eq!(back.skipped, 0);
         assert_eq!(back.curves[0].curve.knots(), spatial.knots());

@@ -60,16 +60,19 @@ pub(crate) fn basis_functions(
 /// `out[j][r] = N_{m-j+r}^{j+1}(t)` for `r = 0..=j` (the rows of A2.2's triangle, kept).
 ///
 /// Every term is a product of non-negative factors for `t` in the span, so each value is
-/// accurate to a few units in the last place. Same precondition as [`basis_functions`].
-pub(crate) fn basis_functions_of_every_degree(
+/// accurate to a few units in the last place. Same precondition as [`basis_functions`], and
+/// `degree < N` (callers pass [`CAP`], or a smaller `N` for low degrees, which keeps the
+/// stack buffers small).
+#[inline]
+pub(crate) fn basis_functions_of_every_degree<const N: usize>(
     knots: &[f64],
     degree: usize,
     span: usize,
     t: f64,
-    out: &mut [[f64; CAP]; CAP],
+    out: &mut [[f64; N]; N],
 ) {
-    let mut left = [0.0; CAP];
-    let mut right = [0.0; CAP];
+    let mut left = [0.0; N];
+    let mut right = [0.0; N];
     out[0][0] = 1.0;
     for j in 1..=degree {
         left[j] = t - knots[span + 1 - j];

@@ -12,8 +12,9 @@
 //!   with the square of the width as a piece is halved;
 //! * `g'` has the sign of `M = N' D - N D'` (`M = N'` when `D = 1`), also in Bernstein form.
 //!
-//! The pieces' bounding boxes (of their projected Bézier points) form a hierarchy: a balanced
-//! binary tree whose nodes hold pieces near each other in space and the box of them all. The search
+//! The pieces' bounding boxes (of their projected Bézier points) form a hierarchy
+//! ([`super::box_tree`], shared with the surfaces' search): a balanced binary tree whose nodes
+//! hold pieces near each other in space and the box of them all. The search
 //! walks it depth first, the nearer child first, and drops every node whose box cannot come
 //! within the tolerance of the best distance found: on a curve of many pieces a query visits
 //! a few dozen nodes, not every piece. At each piece reached it takes the distance at the
@@ -36,6 +37,7 @@
 use super::MAX_DEGREE;
 use super::basis::find_span;
 use super::bernstein::{BINOMIAL, MAX_RATIO_DEGREE, convolve, halve, unscale, value_and_slope};
+use super::box_tree::{self, BoxItem, BoxNode, NodeContent};
 use super::curve::Curve;
 use super::vector::{Point, distance};
 use smallvec::SmallVec;
@@ -142,73 +144,12 @@ pub struct ClosestPointSearch<'c> {
     /// Homogeneous Bézier points, `p + 1` per piece.
     points: Vec<[f64; 4]>,
     pieces: Vec<PieceBox>,
-    /// The bounding-box hierarchy over the pieces ([`build_hierarchy`]); `nodes[0]` is the
+    /// The bounding-box hierarchy over the pieces ([`box_tree::build`]); `nodes[0]` is the
     /// root (none when the range is a single parameter).
-    nodes: Vec<Node>,
+    nodes: Vec<BoxNode<f64>>,
     size: f64,
     /// `s(hi)` when the curve jumps at `hi` (it then differs from the last piece's end).
     end_point: Option<Point>,
-}
-
-/// A node of the hierarchy: the bounding box of some pieces, the smallest parameter among
-/// them, and either its two halves or (a leaf) its one piece.
-#[derive(Debug, Clone, Copy)]
-struct Node {
-    min: Point,
-    max: Point,
-    from: f64,
-    content: NodeContent,
-}
-
-#[derive(Debug, Clone, Copy)]
-enum NodeContent {
-    Halves(usize, usize),
-    Piece(usize),
-}
-
-impl Node {
-    /// The squared distance from `q` to the box: a lower bound for its pieces.
-    fn squared_distance(&self, q: Point, coordinates: usize) -> f64 {
-        box_squared_distance(&self.min, &self.max, q, coordinates)
-    }
-}
-
-/// Appends the subtree over the pieces `order` (indices, non-empty) to `nodes`; returns its
-/// index. The pieces are halved by count at the median of their boxes' centres along the
-/// longest side of the node's box, so that each node holds pieces near each other in space
-/// (a long curve that doubles back has consecutive pieces far apart, and boxes of
-/// consecutive pieces would cover it all), and the depth stays `⌈log2(pieces)⌉`.
-fn build_hierarchy(pieces: &[PieceBox], order: &mut [usize], nodes: &mut Vec<Node>) -> usize {
-    let index = nodes.len();
-    let mut min = [f64::INFINITY; 3];
-    let mut max = [f64::NEG_INFINITY; 3];
-    let mut from = f64::INFINITY;
-    for piece in order.iter().map(|&i| &pieces[i]) {
-        for c in 0..3 {
-            min[c] = min[c].min(piece.min[c]);
-            max[c] = max[c].max(piece.max[c]);
-        }
-        from = from.min(piece.lo);
-    }
-    nodes.push(Node {
-        min,
-        max,
-        from,
-        content: NodeContent::Piece(order[0]),
-    });
-    if order.len() > 1 {
-        let axis = (0..3)
-            .max_by(|&a, &b| (max[a] - min[a]).total_cmp(&(max[b] - min[b])))
-            .unwrap_or(0);
-        let centre = |i: usize| pieces[i].min[axis] + pieces[i].max[axis];
-        let middle = order.len() / 2;
-        order.select_nth_unstable_by(middle, |&a, &b| centre(a).total_cmp(&centre(b)));
-        let (left, right) = order.split_at_mut(middle);
-        let left = build_hierarchy(pieces, left, nodes);
-        let right = build_hierarchy(pieces, right, nodes);
-        nodes[index].content = NodeContent::Halves(left, right);
-    }
-    index
 }
 
 /// A piece's parameter interval and the bounding box of its projected Bézier points (which
@@ -225,24 +166,6 @@ struct PieceBox {
     end_parameter: f64,
     min: Point,
     max: Point,
-}
-
-/// The squared distance from `q` to the box `[min, max]` (in its first `coordinates`).
-fn box_squared_distance(min: &Point, max: &Point, q: Point, coordinates: usize) -> f64 {
-    let mut sum = 0.0;
-    for ((&low, &high), &value) in min.iter().zip(max).zip(&q).take(coordinates) {
-        let below = low - value;
-        let above = value - high;
-        let gap = if below > 0.0 {
-            below
-        } else if above > 0.0 {
-            above
-        } else {
-            0.0
-        };
-        sum += gap * gap;
-    }
-    sum
 }
 
 impl<'c> ClosestPointSearch<'c> {
@@ -291,11 +214,15 @@ impl<'c> ClosestPointSearch<'c> {
             .last()
             .filter(|last| last.end_parameter != last.hi)
             .is_some();
-        let mut nodes = Vec::with_capacity(2 * pieces.len());
-        if !pieces.is_empty() {
-            let mut order: Vec<usize> = (0..pieces.len()).collect();
-            build_hierarchy(&pieces, &mut order, &mut nodes);
-        }
+        let items: Vec<BoxItem<f64>> = pieces
+            .iter()
+            .map(|piece| BoxItem {
+                min: piece.min,
+                max: piece.max,
+                key: piece.lo,
+            })
+            .collect();
+        let nodes = box_tree::build(&items);
         Ok(ClosestPointSearch {
             curve,
             range: (lo, hi),
@@ -357,7 +284,7 @@ impl<'c> ClosestPointSearch<'c> {
                     }
                     continue;
                 }
-                NodeContent::Piece(leaf) => leaf,
+                NodeContent::Item(leaf) => leaf,
             };
             let piece = &self.pieces[leaf];
             let bezier = &self.points[leaf * (p + 1)..(leaf + 1) * (p + 1)];

@@ -103,6 +103,33 @@ pub fn distinct_knots(full: &[f64]) -> (Vec<f64>, Vec<usize>) {
     (values, multiplicities)
 }
 
+/// [`Curve::snap_to_domain`] for any domain `[lo, hi]` (`lo < hi`) of one parameter: `t`
+/// itself inside it; the nearer end just outside it (by at most [`DOMAIN_END_SLACK`]
+/// `· (hi - lo)` or [`DOMAIN_END_ULPS`] units of roundoff of the ends); with `periodic`,
+/// every finite `t` reduced into the period, `lo + (t - lo) mod (hi - lo)`; `None` otherwise.
+/// Shared by the curves and by each direction of a surface.
+pub fn snap_parameter(t: f64, (lo, hi): (f64, f64), periodic: bool) -> Option<f64> {
+    if !t.is_finite() {
+        return None;
+    }
+    if (lo..=hi).contains(&t) {
+        return Some(t);
+    }
+    if periodic {
+        let reduced = lo + (t - lo).rem_euclid(hi - lo);
+        return reduced.is_finite().then(|| reduced.clamp(lo, hi));
+    }
+    let roundoff = DOMAIN_END_ULPS * f64::EPSILON * lo.abs().max(hi.abs());
+    let slack = (DOMAIN_END_SLACK * (hi - lo)).max(roundoff);
+    if t < lo && lo - t <= slack {
+        Some(lo)
+    } else if t > hi && t - hi <= slack {
+        Some(hi)
+    } else {
+        None
+    }
+}
+
 /// Whether control points are planar or spatial.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Dimension {
@@ -382,35 +409,29 @@ impl Curve {
         }
         let weights = weights.map(<[f64]>::to_vec);
         let count = points.len();
-        let (full, convention) = match knots {
-            KnotForm::Flat(knots) => flat_knots(knots, degree, count)?,
-            KnotForm::Multiplicities {
+        if let KnotForm::Periodic {
+            knots,
+            multiplicities,
+        } = knots
+        {
+            check_periodic_knots(knots, multiplicities, degree, count)?;
+            return Ok(super::periodic::unwrapped(
+                degree,
+                dimension,
+                points,
+                weights,
                 knots,
                 multiplicities,
-            } => (
-                expanded_knots(knots, multiplicities, degree, count)?,
-                KnotConvention::Multiplicities,
-            ),
-            KnotForm::Periodic {
-                knots,
-                multiplicities,
-            } => {
-                check_periodic_knots(knots, multiplicities, degree, count)?;
-                return Ok(super::periodic::unwrapped(
-                    degree,
-                    dimension,
-                    points,
-                    weights,
-                    knots,
-                    multiplicities,
-                ));
-            }
-        };
-        if full[degree] >= full[count] {
-            return Err(CurveError::EmptyDomain);
+            ));
         }
+        let valid = validate_knots(degree, count, knots)?;
         Ok(Curve::from_valid_parts(
-            degree, dimension, points, weights, full, convention,
+            degree,
+            dimension,
+            points,
+            weights,
+            valid.full,
+            valid.convention,
         ))
     }
 
@@ -654,32 +675,67 @@ impl Curve {
     /// A periodic curve takes every finite parameter: one outside its period `[lo, hi]` is
     /// reduced into it, `lo + (t - lo) mod (hi - lo)` (the curve repeats with the period).
     pub fn snap_to_domain(&self, t: f64) -> Option<f64> {
-        if !t.is_finite() {
-            return None;
-        }
-        let (lo, hi) = self.domain();
-        if (lo..=hi).contains(&t) {
-            return Some(t);
-        }
-        if self.periodic.is_some() {
-            let reduced = lo + (t - lo).rem_euclid(hi - lo);
-            return reduced.is_finite().then(|| reduced.clamp(lo, hi));
-        }
-        let roundoff = DOMAIN_END_ULPS * f64::EPSILON * lo.abs().max(hi.abs());
-        let slack = (DOMAIN_END_SLACK * (hi - lo)).max(roundoff);
-        if t < lo && lo - t <= slack {
-            Some(lo)
-        } else if t > hi && t - hi <= slack {
-            Some(hi)
-        } else {
-            None
-        }
+        snap_parameter(t, self.domain(), self.periodic.is_some())
     }
 
     /// The span `m` with `u_m <= t < u_{m+1}` (last non-empty span at the right end).
     pub fn span(&self, t: f64) -> usize {
         find_span(&self.knots, self.degree, t)
     }
+}
+
+/// A knot vector of one parameter direction that obeys every rule of its form: what a curve
+/// or one direction of a surface is built on.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct ValidKnots {
+    /// The full vector; for the periodic form that of the ordinary spline over one period
+    /// (cut open at `k_0`), whose control point `k` is the periodic form's `k mod N`.
+    pub(crate) full: Vec<f64>,
+    /// The caller's convention (the periodic form writes its knots with multiplicities).
+    pub(crate) convention: KnotConvention,
+    /// The periodic layout, for the periodic form.
+    pub(crate) periodicity: Option<Periodicity>,
+}
+
+/// Checks knots in any [`KnotForm`] for a degree-`degree` spline with `count` control points
+/// as the caller gives them (the rules of [`Curve::from_knot_form`] for the knots, and a
+/// non-empty domain); the degree and the count themselves are the caller's to check.
+pub(crate) fn validate_knots(
+    degree: usize,
+    count: usize,
+    knots: KnotForm<'_>,
+) -> Result<ValidKnots, CurveError> {
+    let (full, convention) = match knots {
+        KnotForm::Flat(knots) => flat_knots(knots, degree, count)?,
+        KnotForm::Multiplicities {
+            knots,
+            multiplicities,
+        } => (
+            expanded_knots(knots, multiplicities, degree, count)?,
+            KnotConvention::Multiplicities,
+        ),
+        KnotForm::Periodic {
+            knots,
+            multiplicities,
+        } => {
+            check_periodic_knots(knots, multiplicities, degree, count)?;
+            let (full, periodicity) =
+                super::periodic::unwrapped_knots(degree, knots, multiplicities);
+            return Ok(ValidKnots {
+                full,
+                convention: KnotConvention::Multiplicities,
+                periodicity: Some(periodicity),
+            });
+        }
+    };
+    if full[degree] >= full[count] {
+        return Err(CurveError::EmptyDomain);
+    }
+    Ok(ValidKnots {
+        full,
+        convention,
+        periodicity: None,
+    })
 }
 
 /// The control points as core points, after the rules of [`Curve::from_knot_form`] for the

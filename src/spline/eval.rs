@@ -62,6 +62,37 @@ fn check_parameter(curve: &Curve, index: usize, t: f64) -> Result<(), EvalError>
     Ok(())
 }
 
+/// The first hodograph point `factor · (w_l d_l - w_{l-1} d_{l-1})` of two neighbouring
+/// control points `(d_l, w_l) = here`, `(d_{l-1}, w_{l-1}) = previous`, in homogeneous form
+/// relative to `origin` (`factor = p / (u_{i+p} - u_i)`), computed from the data themselves:
+/// `w_l d_l - w_{l-1} d_{l-1} = w_l (d_l - d_{l-1}) + (w_l - w_{l-1}) (d_{l-1} - O)`, so that
+/// neighbouring control points close together (as beside a short span) keep every digit of
+/// their difference, which the rounded products `w (d - O)` would not. Shared by the curves
+/// and by each direction of a surface.
+#[inline(always)]
+pub(crate) fn first_hodograph_point(
+    factor: f64,
+    (here, w): (Point, f64),
+    (previous, before): (Point, f64),
+    origin: Point,
+) -> [f64; 4] {
+    let change = w - before;
+    let mut out = [0.0; 4];
+    for c in 0..3 {
+        let relative = previous[c] - origin[c];
+        out[c] = factor * multiply_add(w, here[c] - previous[c], change * relative);
+    }
+    out[3] = factor * change;
+    out
+}
+
+/// A later hodograph point, `factor · (q - before)` of two neighbours of the level below
+/// (`factor = (p - k + 1) / (u_{i+p-k+1} - u_i)`, The NURBS Book eq. 3.8).
+#[inline(always)]
+pub(crate) fn hodograph_difference(factor: f64, q: [f64; 4], before: [f64; 4]) -> [f64; 4] {
+    std::array::from_fn(|c| factor * (q[c] - before[c]))
+}
+
 /// `binom(k, i)` as a float (exact for the small orders used here).
 fn binomial(k: usize, i: usize) -> f64 {
     let i = i.min(k - i);
@@ -135,24 +166,18 @@ impl Curve {
                 for l in (1..=p).rev() {
                     let i = span - p + l;
                     let factor = p as f64 / (knots[i + p] - knots[i]);
-                    let (w, before) = (self.weight(i), self.weight(i - 1));
-                    let change = w - before;
-                    let (here, previous) = (points[l], points[l - 1]);
-                    for c in 0..3 {
-                        let relative = previous[c] - origin[c];
-                        level[l][c] =
-                            factor * multiply_add(w, here[c] - previous[c], change * relative);
-                    }
-                    level[l][3] = factor * change;
+                    level[l] = first_hodograph_point(
+                        factor,
+                        (points[l], self.weight(i)),
+                        (points[l - 1], self.weight(i - 1)),
+                        origin,
+                    );
                 }
             } else if k > 1 {
                 for l in (k..=p).rev() {
                     let i = span - p + l;
                     let factor = (p - k + 1) as f64 / (knots[i + p - k + 1] - knots[i]);
-                    let previous = level[l - 1];
-                    for (q, before) in level[l].iter_mut().zip(previous) {
-                        *q = factor * (*q - before);
-                    }
+                    level[l] = hodograph_difference(factor, level[l], level[l - 1]);
                 }
             }
             let mut sum = [0.0; 4];

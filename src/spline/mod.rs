@@ -9,6 +9,7 @@
 mod basis;
 pub(crate) mod bernstein;
 mod bezier;
+pub(crate) mod box_tree;
 mod closest;
 mod curve;
 mod envelope;
@@ -36,11 +37,17 @@ pub use bezier::{BezierPiece, BezierPieces};
 pub use closest::{CLOSEST_POINT_TOLERANCE, ClosestPoint, ClosestPointError, ClosestPointSearch};
 pub use curve::{
     CallerKnots, Curve, CurveError, CurveField, CurveLimits, DOMAIN_END_SLACK, DOMAIN_END_ULPS,
-    Dimension, KnotConvention, KnotForm, distinct_knots,
+    Dimension, KnotConvention, KnotForm, distinct_knots, snap_parameter,
 };
+// The pieces the surfaces (crate::surface) build on, one direction at a time.
+pub(crate) use basis::{CAP, basis_functions, basis_functions_of_every_degree, find_span};
+pub(crate) use curve::validate_knots;
 pub use envelope::{EnvelopeError, KnotRun};
 pub use eval::{BatchEvaluator, EvalError};
+pub(crate) use eval::{first_hodograph_point, hodograph_difference, multiply_add};
 pub use insert::{EDITING_KNOT_SPACING, EDITING_KNOTS_EACH_SIDE, InsertError};
+pub(crate) use other_knots::bezier_of_net;
+pub(crate) use periodic::Periodicity;
 pub use periodic::{PeriodicWindow, WrapError};
 pub use rational_basis::{MAX_BASIS_ORDER, RationalBasis};
 pub use tessellate::{ROUNDING_MARGIN, TOLERANCE_FLOOR, TessellationError, distance_to_segment};

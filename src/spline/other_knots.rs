@@ -82,147 +82,163 @@ impl Curve {
         b: f64,
         out: &mut [[f64; 4]],
     ) {
-        // Cubics (every shape request) get the blossoms written out.
-        if self.degree() == 3 {
-            Self::cubic_bezier_piece(knots, span, net, a, b, out);
-        } else {
-            self.bezier_piece_of_any_degree(knots, span, net, a, b, out);
+        bezier_of_net(self.degree(), knots, span, net, a, b, out);
+    }
+}
+
+/// [`Curve::bezier_piece_of_net`] for a spline of degree `degree` over the full knots `knots`:
+/// the homogeneous Bézier points of `[a, b]` inside `span` of the net `net` (the `p + 1`
+/// homogeneous points that stand for the control points `span - p ..= span`). Shared by the
+/// curves and by each direction of a surface's patches.
+pub(crate) fn bezier_of_net(
+    degree: usize,
+    knots: &[f64],
+    span: usize,
+    net: &[[f64; 4]],
+    a: f64,
+    b: f64,
+    out: &mut [[f64; 4]],
+) {
+    // Cubics (every shape request) get the blossoms written out.
+    if degree == 3 {
+        cubic_bezier_piece(knots, span, net, a, b, out);
+    } else {
+        bezier_piece_of_any_degree(degree, knots, span, net, a, b, out);
+    }
+}
+
+/// [`bezier_of_net`] for a cubic, written out (the loops of
+/// [`bezier_piece_of_any_degree`] do not unroll). For knots `u` and the net `P_0 ..= P_3` of
+/// `span = s` (`P_i` the control point `s - 3 + i`), de Boor's levels with arguments
+/// `x, y, z` are
+///
+/// * `Q_i(x) = P_{i-1} + (x - u_{s-3+i}) / (u_{s+i} - u_{s-3+i}) (P_i - P_{i-1})`, `i = 1, 2, 3`;
+/// * `R_i(x, y) = Q_{i-1} + (y - u_{s-3+i}) / (u_{s-1+i} - u_{s-3+i}) (Q_i - Q_{i-1})`, `i = 2, 3`;
+/// * `f(x, y, z) = R_2 + (z - u_s) / (u_{s+1} - u_s) (R_3 - R_2)`,
+///
+/// and `B_0 = f(a, a, a)`, `B_1 = f(a, a, b)`, `B_2 = f(a, b, b)`, `B_3 = f(b, b, b)`:
+/// 16 blends, sharing `Q(a)`, `Q(b)` and `R(a, a)`.
+#[inline(always)]
+fn cubic_bezier_piece(
+    knots: &[f64],
+    span: usize,
+    net: &[[f64; 4]],
+    a: f64,
+    b: f64,
+    out: &mut [[f64; 4]],
+) {
+    let u = &knots[span - 2..=span + 3]; // u[k] = u_{s-2+k}
+    let blend = |from: [f64; 4], to: [f64; 4], weight: f64| -> [f64; 4] {
+        std::array::from_fn(|c| multiply_add(weight, to[c] - from[c], from[c]))
+    };
+    // Level 1: Q_i blends P_{i-1}, P_i over [u_{s-3+i}, u_{s+i}].
+    let first = [
+        1.0 / (u[3] - u[0]),
+        1.0 / (u[4] - u[1]),
+        1.0 / (u[5] - u[2]),
+    ];
+    let level_1 = |x: f64| {
+        [
+            blend(net[0], net[1], (x - u[0]) * first[0]),
+            blend(net[1], net[2], (x - u[1]) * first[1]),
+            blend(net[2], net[3], (x - u[2]) * first[2]),
+        ]
+    };
+    // Level 2: R_2 blends Q_1, Q_2 over [u_{s-1}, u_{s+1}]; R_3 blends Q_2, Q_3 over
+    // [u_s, u_{s+2}].
+    let second = [1.0 / (u[3] - u[1]), 1.0 / (u[4] - u[2])];
+    let level_2 = |q: &[[f64; 4]; 3], y: f64| {
+        [
+            blend(q[0], q[1], (y - u[1]) * second[0]),
+            blend(q[1], q[2], (y - u[2]) * second[1]),
+        ]
+    };
+    // Level 3 over the span itself, [u_s, u_{s+1}].
+    let third = 1.0 / (u[3] - u[2]);
+    let level_3 = |r: &[[f64; 4]; 2], z: f64| blend(r[0], r[1], (z - u[2]) * third);
+    let (q_a, q_b) = (level_1(a), level_1(b));
+    let r_aa = level_2(&q_a, a);
+    out[0] = level_3(&r_aa, a);
+    out[1] = level_3(&r_aa, b);
+    out[2] = level_3(&level_2(&q_a, b), b);
+    out[3] = level_3(&level_2(&q_b, b), b);
+}
+
+/// [`bezier_of_net`] for any degree.
+///
+/// The blossoms share work: `S_k` is the net after `k` de Boor levels with argument `a`
+/// (`S_0` the net itself); `B_{p-k}` continues `S_k` with `p - k` levels of argument `b`.
+/// For a cubic that would be 16 blends instead of 24.
+fn bezier_piece_of_any_degree(
+    degree: usize,
+    knots: &[f64],
+    span: usize,
+    net: &[[f64; 4]],
+    a: f64,
+    b: f64,
+    out: &mut [[f64; 4]],
+) {
+    // Work arrays sized for the degree (N = p + 1) for the common degrees: those of the
+    // largest degree cost more to clear and copy than the blends (a quintic's deviation
+    // measured 2,100 instructions per piece with them, 1,500 without).
+    let p = degree;
+    match p {
+        2 => bezier_piece_sized::<3>(p, knots, span, net, a, b, out),
+        4 => bezier_piece_sized::<5>(p, knots, span, net, a, b, out),
+        5 => bezier_piece_sized::<6>(p, knots, span, net, a, b, out),
+        6 => bezier_piece_sized::<7>(p, knots, span, net, a, b, out),
+        7 => bezier_piece_sized::<8>(p, knots, span, net, a, b, out),
+        _ => bezier_piece_sized::<CAP>(p, knots, span, net, a, b, out),
+    }
+}
+
+/// [`bezier_piece_of_any_degree`] with work arrays of `N > p` entries.
+#[inline(always)]
+fn bezier_piece_sized<const N: usize>(
+    p: usize,
+    knots: &[f64],
+    span: usize,
+    net: &[[f64; 4]],
+    a: f64,
+    b: f64,
+    out: &mut [[f64; 4]],
+) {
+    // Level k (1 <= k <= p) of de Boor's algorithm blends local points j - 1 and j
+    // (k <= j <= p) with weight (x - lower) / (upper - lower), where
+    // lower = u_{span-p+j} = below[j - 1] and upper = u_{span+1+j-k} = above[j - k].
+    let mut below = [0.0; N];
+    let mut above = [0.0; N];
+    below[..p].copy_from_slice(&knots[span + 1 - p..=span]);
+    above[..p].copy_from_slice(&knots[span + 1..=span + p]);
+    let lower = |j: usize| below[j - 1];
+    let upper = |j: usize, k: usize| above[j - k];
+    let mut reciprocal = [[0.0; N]; N];
+    for (k, row) in reciprocal.iter_mut().enumerate().take(p + 1).skip(1) {
+        for (j, value) in row.iter_mut().enumerate().take(p + 1).skip(k) {
+            *value = 1.0 / (upper(j, k) - lower(j));
         }
     }
-
-    /// [`Curve::bezier_piece_of_net`] for a cubic, written out (the loops of
-    /// [`Curve::bezier_piece_of_any_degree`] do not unroll). For knots `u` and the net `P_0 ..= P_3` of
-    /// `span = s` (`P_i` the control point `s - 3 + i`), de Boor's levels with arguments
-    /// `x, y, z` are
-    ///
-    /// * `Q_i(x) = P_{i-1} + (x - u_{s-3+i}) / (u_{s+i} - u_{s-3+i}) (P_i - P_{i-1})`, `i = 1, 2, 3`;
-    /// * `R_i(x, y) = Q_{i-1} + (y - u_{s-3+i}) / (u_{s-1+i} - u_{s-3+i}) (Q_i - Q_{i-1})`, `i = 2, 3`;
-    /// * `f(x, y, z) = R_2 + (z - u_s) / (u_{s+1} - u_s) (R_3 - R_2)`,
-    ///
-    /// and `B_0 = f(a, a, a)`, `B_1 = f(a, a, b)`, `B_2 = f(a, b, b)`, `B_3 = f(b, b, b)`:
-    /// 16 blends, sharing `Q(a)`, `Q(b)` and `R(a, a)`.
-    #[inline(always)]
-    fn cubic_bezier_piece(
-        knots: &[f64],
-        span: usize,
-        net: &[[f64; 4]],
-        a: f64,
-        b: f64,
-        out: &mut [[f64; 4]],
-    ) {
-        let u = &knots[span - 2..=span + 3]; // u[k] = u_{s-2+k}
-        let blend = |from: [f64; 4], to: [f64; 4], weight: f64| -> [f64; 4] {
-            std::array::from_fn(|c| multiply_add(weight, to[c] - from[c], from[c]))
-        };
-        // Level 1: Q_i blends P_{i-1}, P_i over [u_{s-3+i}, u_{s+i}].
-        let first = [
-            1.0 / (u[3] - u[0]),
-            1.0 / (u[4] - u[1]),
-            1.0 / (u[5] - u[2]),
-        ];
-        let level_1 = |x: f64| {
-            [
-                blend(net[0], net[1], (x - u[0]) * first[0]),
-                blend(net[1], net[2], (x - u[1]) * first[1]),
-                blend(net[2], net[3], (x - u[2]) * first[2]),
-            ]
-        };
-        // Level 2: R_2 blends Q_1, Q_2 over [u_{s-1}, u_{s+1}]; R_3 blends Q_2, Q_3 over
-        // [u_s, u_{s+2}].
-        let second = [1.0 / (u[3] - u[1]), 1.0 / (u[4] - u[2])];
-        let level_2 = |q: &[[f64; 4]; 3], y: f64| {
-            [
-                blend(q[0], q[1], (y - u[1]) * second[0]),
-                blend(q[1], q[2], (y - u[2]) * second[1]),
-            ]
-        };
-        // Level 3 over the span itself, [u_s, u_{s+1}].
-        let third = 1.0 / (u[3] - u[2]);
-        let level_3 = |r: &[[f64; 4]; 2], z: f64| blend(r[0], r[1], (z - u[2]) * third);
-        let (q_a, q_b) = (level_1(a), level_1(b));
-        let r_aa = level_2(&q_a, a);
-        out[0] = level_3(&r_aa, a);
-        out[1] = level_3(&r_aa, b);
-        out[2] = level_3(&level_2(&q_a, b), b);
-        out[3] = level_3(&level_2(&q_b, b), b);
-    }
-
-    /// [`Curve::bezier_piece_of_net`] for any degree.
-    ///
-    /// The blossoms share work: `S_k` is the net after `k` de Boor levels with argument `a`
-    /// (`S_0` the net itself); `B_{p-k}` continues `S_k` with `p - k` levels of argument `b`.
-    /// For a cubic that would be 16 blends instead of 24.
-    fn bezier_piece_of_any_degree(
-        &self,
-        knots: &[f64],
-        span: usize,
-        net: &[[f64; 4]],
-        a: f64,
-        b: f64,
-        out: &mut [[f64; 4]],
-    ) {
-        // Arrays sized for the degree (N = p + 1) for the common degrees: the work arrays of
-        // the largest degree cost more to clear and copy than the blends (a quintic's
-        // deviation measured 2,100 instructions per piece with them).
-        let p = self.degree();
-        match p {
-            2 => Self::bezier_piece_sized::<3>(p, knots, span, net, a, b, out),
-            4 => Self::bezier_piece_sized::<5>(p, knots, span, net, a, b, out),
-            5 => Self::bezier_piece_sized::<6>(p, knots, span, net, a, b, out),
-            6 => Self::bezier_piece_sized::<7>(p, knots, span, net, a, b, out),
-            7 => Self::bezier_piece_sized::<8>(p, knots, span, net, a, b, out),
-            _ => Self::bezier_piece_sized::<CAP>(p, knots, span, net, a, b, out),
-        }
-    }
-
-    /// [`Curve::bezier_piece_of_any_degree`] with work arrays of `N > p` entries.
-    #[inline(always)]
-    fn bezier_piece_sized<const N: usize>(
-        p: usize,
-        knots: &[f64],
-        span: usize,
-        net: &[[f64; 4]],
-        a: f64,
-        b: f64,
-        out: &mut [[f64; 4]],
-    ) {
-        // Level k (1 <= k <= p) of de Boor's algorithm blends local points j - 1 and j
-        // (k <= j <= p) with weight (x - lower) / (upper - lower), where
-        // lower = u_{span-p+j} = below[j - 1] and upper = u_{span+1+j-k} = above[j - k].
-        let mut below = [0.0; N];
-        let mut above = [0.0; N];
-        below[..p].copy_from_slice(&knots[span + 1 - p..=span]);
-        above[..p].copy_from_slice(&knots[span + 1..=span + p]);
-        let lower = |j: usize| below[j - 1];
-        let upper = |j: usize, k: usize| above[j - k];
-        let mut reciprocal = [[0.0; N]; N];
-        for (k, row) in reciprocal.iter_mut().enumerate().take(p + 1).skip(1) {
-            for (j, value) in row.iter_mut().enumerate().take(p + 1).skip(k) {
-                *value = 1.0 / (upper(j, k) - lower(j));
+    let level = |points: &mut [[f64; 4]; N], k: usize, x: f64| {
+        for j in (k..p + 1).rev() {
+            let alpha = (x - lower(j)) * reciprocal[k][j];
+            let (before, current) = (points[j - 1], points[j]);
+            for c in 0..4 {
+                points[j][c] = multiply_add(alpha, current[c] - before[c], before[c]);
             }
         }
-        let level = |points: &mut [[f64; 4]; N], k: usize, x: f64| {
-            for j in (k..p + 1).rev() {
-                let alpha = (x - lower(j)) * reciprocal[k][j];
-                let (before, current) = (points[j - 1], points[j]);
-                for c in 0..4 {
-                    points[j][c] = multiply_add(alpha, current[c] - before[c], before[c]);
-                }
-            }
-        };
-        let mut with_a = [[0.0; 4]; N];
-        with_a[..=p].copy_from_slice(&net[..=p]);
-        let mut blossom = [[0.0; 4]; N];
-        for k in 0..p + 1 {
-            // Levels after k read entries k..=p only.
-            blossom[k..=p].copy_from_slice(&with_a[k..=p]);
-            for later in k + 1..p + 1 {
-                level(&mut blossom, later, b);
-            }
-            out[p - k] = blossom[p];
-            if k < p {
-                level(&mut with_a, k + 1, a);
-            }
+    };
+    let mut with_a = [[0.0; 4]; N];
+    with_a[..=p].copy_from_slice(&net[..=p]);
+    let mut blossom = [[0.0; 4]; N];
+    for k in 0..p + 1 {
+        // Levels after k read entries k..=p only.
+        blossom[k..=p].copy_from_slice(&with_a[k..=p]);
+        for later in k + 1..p + 1 {
+            level(&mut blossom, later, b);
+        }
+        out[p - k] = blossom[p];
+        if k < p {
+            level(&mut with_a, k + 1, a);
         }
     }
 }

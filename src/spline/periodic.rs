@@ -106,18 +106,27 @@ impl PeriodData {
         }
     }
 
-    /// The ordinary curve cut open at the last copy `c` of a knot value, and `m_a`.
+    /// The ordinary curve cut open at the last copy `c` of a knot value: its knots and
+    /// control points.
     fn cut_open(&self, c: usize) -> (Vec<f64>, Vec<[f64; 4]>) {
+        let knots = self.cut_open_knots(c);
+        let first = c as i64 - self.degree as i64;
+        let n_poles = knots.len() - self.degree - 1;
+        let poles = (0..n_poles).map(|k| self.pole(first + k as i64)).collect();
+        (knots, poles)
+    }
+
+    /// The knots of the ordinary curve cut open at the last copy `c` of a knot value `a`
+    /// (`m_a` copies): `τ_{c-p} …`, `N + 2p + 2 - m_a` of them.
+    fn cut_open_knots(&self, c: usize) -> Vec<f64> {
         let p = self.degree;
         let value = self.flat[c];
         let copies = self.flat.iter().filter(|&&u| u == value).count();
         let first = c as i64 - p as i64;
         let n_poles = self.flat.len() + p + 1 - copies;
-        let knots = (0..n_poles + p + 1)
+        (0..n_poles + p + 1)
             .map(|i| self.knot(first + i as i64))
-            .collect();
-        let poles = (0..n_poles).map(|k| self.pole(first + k as i64)).collect();
-        (knots, poles)
+            .collect()
     }
 
     /// The ordinary curve cut open at `c` (convention `convention`).
@@ -226,6 +235,35 @@ pub(crate) fn unwrapped(
         seam_multiplicity: multiplicities[0],
     }
     .into_curve()
+}
+
+/// The knots of validated periodic-form data cut open at `k_0` (as [`unwrapped`] stores a
+/// periodic curve) and the layout: control point `k` of the cut-open spline is the periodic
+/// form's `P_{k mod N}` (module docs). Each direction of a periodic surface is stored so.
+pub(crate) fn unwrapped_knots(
+    degree: usize,
+    knots: &[f64],
+    multiplicities: &[usize],
+) -> (Vec<f64>, Periodicity) {
+    let last = knots.len() - 1;
+    let mut flat = Vec::new();
+    for (&u, &m) in knots[..last].iter().zip(multiplicities) {
+        flat.extend(std::iter::repeat_n(u, m));
+    }
+    let periodicity = Periodicity {
+        poles: flat.len(),
+        seam_multiplicity: multiplicities[0],
+    };
+    let data = PeriodData {
+        degree,
+        dimension: Dimension::Three,
+        rational: false,
+        flat,
+        last: knots[last],
+        poles: Vec::new(),
+        seam_multiplicity: multiplicities[0],
+    };
+    (data.cut_open_knots(multiplicities[0] - 1), periodicity)
 }
 
 /// The periodic form's knots of a periodic curve: the distinct values of one period and

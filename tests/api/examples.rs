@@ -110,6 +110,49 @@ fn check_sensible(path: &str, request: &Value, body: &Value) {
             let curves = body["curves"].as_array().unwrap();
             assert!(!curves.is_empty(), "the example files hold B-spline curves");
             assert!(curves.iter().all(|c| c["source"].is_string()));
+            let surfaces = body["surfaces"].as_array().unwrap();
+            assert!(surfaces.iter().all(|s| s["source"].is_string()));
+        }
+        // The surfaces of the fourth release.
+        "/v1/surfaces/evaluate" => {
+            let count = match request["parameters"].as_array() {
+                Some(parameters) => parameters.len(),
+                None => numbers(&request["samples"]).iter().product::<f64>() as usize,
+            };
+            let found = points(&body["points"]);
+            assert_eq!(found.len(), count);
+            assert!(found.iter().flatten().all(|v| v.is_finite()));
+        }
+        "/v1/surfaces/closest-point" => {
+            let results = body["results"].as_array().unwrap();
+            assert_eq!(results.len(), request["points"].as_array().unwrap().len());
+            assert!(
+                results
+                    .iter()
+                    .all(|r| r["distance"].as_f64().unwrap() >= 0.0)
+            );
+        }
+        "/v1/surfaces/tessellate" => {
+            let max_error = body["max_error"].as_f64().unwrap();
+            assert!(max_error > 0.0 && max_error <= request["tolerance"].as_f64().unwrap());
+            assert!(!body["triangles"].as_array().unwrap().is_empty());
+            assert_eq!(
+                points(&body["vertices"]).len(),
+                points(&body["normals"]).len()
+            );
+        }
+        "/v1/surfaces/iso-curve" => {
+            assert!(body["curve"]["control_points"].as_array().unwrap().len() >= 2);
+        }
+        "/v1/surfaces/insert-knots" => {
+            let rows = |v: &Value| v["control_points"].as_array().unwrap().len();
+            let columns = |v: &Value| v["control_points"][0].as_array().unwrap().len();
+            let (before, after) = (&request["surface"], &body["surface"]);
+            assert!(rows(after) * columns(after) > rows(before) * columns(before));
+        }
+        "/v1/surfaces/split" => {
+            let cuts = request["parameters"].as_array().unwrap().len();
+            assert_eq!(body["surfaces"].as_array().unwrap().len(), cuts + 1);
         }
         "/v1/curves/bezier" => {
             assert!(!body["segments"].as_array().unwrap().is_empty());
@@ -187,9 +230,12 @@ async fn every_example_request_gets_a_sensible_200() {
             let import = serde_json::json!({"format": request["format"], "data": data});
             let (status, back) = app.post_json("/v1/curves/import", &import).await;
             assert_eq!(status, 200, "{name}: {back}");
+            let count = |v: &Value| v.as_array().map_or(0, Vec::len);
+            assert_eq!(count(&back["curves"]), count(&request["curves"]), "{name}");
             assert_eq!(
-                back["curves"].as_array().unwrap().len(),
-                request["curves"].as_array().unwrap().len()
+                count(&back["surfaces"]),
+                count(&request["surfaces"]),
+                "{name}"
             );
             endpoints.insert(path);
             continue;
@@ -201,7 +247,7 @@ async fn every_example_request_gets_a_sensible_200() {
     }
     assert_eq!(
         endpoints.len(),
-        10 + 6,
+        10 + 6 + 6,
         "one example or more per endpoint: {endpoints:?}"
     );
 }

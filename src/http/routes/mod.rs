@@ -11,6 +11,11 @@ pub mod toolkit;
 pub mod from_points;
 pub mod length;
 pub mod reshape;
+// Surfaces (fourth release).
+pub mod surface_closest;
+pub mod surface_mesh;
+pub mod surface_toolkit;
+pub mod surfaces;
 
 use axum::Extension;
 

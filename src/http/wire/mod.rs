@@ -16,3 +16,8 @@ pub mod from_points;
 pub mod length;
 pub mod reshape;
 pub mod toolkit_parse;
+// Surfaces (fourth release).
+pub mod surface_closest;
+pub mod surface_mesh;
+pub mod surface_toolkit;
+pub mod surfaces;
