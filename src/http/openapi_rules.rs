@@ -371,7 +371,8 @@ fn optional_fields_not_null(schema: &mut Value) {
 }
 
 /// `Retry-After` on every 503, `WWW-Authenticate` on every 401, `security: []` on the
-/// operations outside `/v1` (they never need the key), and a `servers` entry.
+/// operations outside `/v1` (they never need the key), the optional key as the document's
+/// own `security` (the `/v1` operations carry none of their own), and a `servers` entry.
 fn document_headers_servers_and_open_operations(document: &mut Value) {
     if let Some(paths) = document.get_mut("paths").and_then(Value::as_object_mut) {
         for (path, item) in paths.iter_mut() {
@@ -382,7 +383,12 @@ fn document_headers_servers_and_open_operations(document: &mut Value) {
                 let Some(operation) = operation.as_object_mut() else {
                     continue;
                 };
-                if !path.starts_with("/v1/") {
+                if path.starts_with("/v1/") {
+                    // The document-wide requirement below stands for these: a generator that
+                    // reads an operation's `[{}, {api_key: []}]` as "key required" (as
+                    // openapi-python-client 0.29 does) would make every call authenticated.
+                    operation.remove("security");
+                } else {
                     operation.insert("security".into(), json!([]));
                 }
                 let Some(responses) = operation
@@ -413,6 +419,8 @@ fn document_headers_servers_and_open_operations(document: &mut Value) {
         }
     }
     if let Some(root) = document.as_object_mut() {
+        // The key is optional: needed only when the service is configured with one.
+        root.insert("security".into(), json!([{}, {"api_key": []}]));
         root.insert(
             "servers".into(),
             json!([{"url": "/", "description": "The service that serves this document"}]),

@@ -97,6 +97,22 @@ async fn the_served_document_is_the_generated_one() {
         served["components"]["securitySchemes"]["api_key"]["scheme"],
         "bearer"
     );
+    // The key is optional, document-wide: no /v1 operation carries a requirement of its own
+    // (a generated client would then demand an authenticated client for every call), and
+    // the operations outside /v1 are open.
+    assert_eq!(served["security"], json!([{}, {"api_key": []}]));
+    for (path, item) in served["paths"].as_object().unwrap() {
+        for (method, operation) in item.as_object().unwrap() {
+            if path.starts_with("/v1/") {
+                assert!(
+                    operation.get("security").is_none(),
+                    "{method} {path} has its own security"
+                );
+            } else {
+                assert_eq!(operation["security"], json!([]), "{method} {path} is open");
+            }
+        }
+    }
 }
 
 /// Set `UPDATE_OPENAPI=1` to rewrite the committed document after an API change.
