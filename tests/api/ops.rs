@@ -115,6 +115,22 @@ async fn the_served_document_is_the_generated_one() {
     }
 }
 
+/// Every operation has its own `operationId` (OpenAPI requires it; a generated TypeScript
+/// client declares one member per id, and a repeated one does not compile).
+#[test]
+fn operation_ids_are_unique() {
+    let document: Value = serde_json::from_str(&knotshape::openapi_json()).unwrap();
+    let mut seen = std::collections::BTreeMap::new();
+    for (path, item) in document["paths"].as_object().unwrap() {
+        for operation in item.as_object().unwrap().values() {
+            let id = operation["operationId"].as_str().unwrap().to_owned();
+            if let Some(first) = seen.insert(id.clone(), path.clone()) {
+                panic!("operationId {id} on both {first} and {path}");
+            }
+        }
+    }
+}
+
 /// Set `UPDATE_OPENAPI=1` to rewrite the committed document after an API change.
 #[test]
 fn generated_openapi_json_is_up_to_date() {

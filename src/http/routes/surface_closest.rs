@@ -32,6 +32,7 @@ const MAX_LISTED_ERRORS: usize = 20;
 #[utoipa::path(
     post,
     path = "/v1/surfaces/closest-point",
+    operation_id = "surface_closest_point",
     tag = "surfaces",
     request_body = SurfaceClosestPointRequest,
     responses(

@@ -28,6 +28,7 @@ const WORK_PER_CONTROL_POINT: usize = 64;
 #[utoipa::path(
     post,
     path = "/v1/surfaces/tessellate",
+    operation_id = "surface_tessellate",
     tag = "surfaces",
     request_body = TessellateRequest,
     responses(

@@ -34,6 +34,7 @@ fn poles(surface: &SurfaceBody) -> usize {
 #[utoipa::path(
     post,
     path = "/v1/surfaces/iso-curve",
+    operation_id = "surface_iso_curve",
     tag = "surfaces",
     request_body = IsoCurveRequest,
     responses(
@@ -81,6 +82,7 @@ pub async fn iso_curve(
 #[utoipa::path(
     post,
     path = "/v1/surfaces/insert-knots",
+    operation_id = "surface_insert_knots",
     tag = "surfaces",
     request_body = SurfaceInsertKnotsRequest,
     responses(
@@ -136,6 +138,7 @@ pub async fn insert_knots(
 #[utoipa::path(
     post,
     path = "/v1/surfaces/split",
+    operation_id = "surface_split",
     tag = "surfaces",
     request_body = SurfaceSplitRequest,
     responses(

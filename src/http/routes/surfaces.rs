@@ -25,6 +25,7 @@ const MAX_LISTED_PARAMETER_ERRORS: usize = 20;
 #[utoipa::path(
     post,
     path = "/v1/surfaces/evaluate",
+    operation_id = "surface_evaluate",
     tag = "surfaces",
     request_body = SurfaceEvaluateRequest,
     responses(
