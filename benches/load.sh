@@ -24,7 +24,8 @@
 # Environment: DURATION (s per endpoint and round, default 5), ROUNDS
 #   (default 3), WARMUP (s, default 2),
 #   CONNECTIONS (default 64), THREADS (wrk threads, default 2),
-#   ENFORCE_TARGETS (0/1, default 0).
+#   ENFORCE_TARGETS (0/1, default 0), BODY (the solve request, default
+#   benches/load/solve.json).
 # Traffic goes to 127.0.0.1 only; the server is stopped on exit.
 set -euo pipefail
 
@@ -39,7 +40,7 @@ ENFORCE_TARGETS="${ENFORCE_TARGETS:-0}"
 TARGET_RATIO=0.6
 TARGET_SOLVE_P99_MS=5
 
-BODY="benches/load/solve.json"
+BODY="${BODY:-benches/load/solve.json}"
 LUA="benches/load/wrk.lua"
 BIN="target/release/knotshape"
 
