@@ -891,10 +891,6 @@ fn regions_case(seed: u64) -> Result<(), String> {
     Ok(())
 }
 
-/// The regions case (the 17th of the default run) whose mismatch is the open solver defect
-/// D5: a degree-4 direct pair of neighbouring knots below `t` misses a well-conditioned root.
-const OPEN_D5_SEED: u64 = 0x0b0f_f5ff_b45f_db51;
-
 fn rng_shuffle<T>(rng: &mut SplitMix64, items: &mut [T]) {
     for i in (1..items.len()).rev() {
         items.swap(i, rng.below(i + 1));
@@ -908,16 +904,6 @@ proptest! {
     #[test]
     fn regions_hold_exactly_what_solve_reaches(seed in any::<u64>()) {
         let result = regions_case(seed);
-        if seed == OPEN_D5_SEED {
-            // The open solver defect D5 (tests/knot_families_regressions.rs): this case's
-            // mismatch is that defect and nothing else. Once D5 is fixed the case passes and
-            // this branch goes.
-            prop_assert!(
-                result.as_ref().is_err_and(|e| e.starts_with("Direct None set [5, 6]")),
-                "seed {seed:#x}: expected the open defect D5's mismatch, got {result:?}"
-            );
-        } else {
-            prop_assert!(result.is_ok(), "seed {seed:#x}: {}", result.unwrap_err());
-        }
+        prop_assert!(result.is_ok(), "seed {seed:#x}: {}", result.unwrap_err());
     }
 }

@@ -7,7 +7,12 @@
 //! it at once (the default choice: both envelope sides, direct pairs, triples on 3D curves
 //! up to degree 5); every solution is checked by the tests' own de Boor and the admissibility
 //! rules, and the planted solution must be among them (inside its box by 1e-7 and determined
-//! by the target; tests/common/families.rs). Counts by degree are printed
+//! by the target; tests/common/families.rs). A random target near `s(t)` follows: on the way
+//! from `s(t)` to a random convex combination of the set's poles, a log-uniform fraction
+//! 10⁻⁴–10⁻¹ of the way (no knot move leaves the poles' hull, and on the real curves — dense,
+//! often nearly straight, planar when 3D — the reach is a thin band along the curve: offsets
+//! of 5–20% of the local size, in any direction, were never reached). Its solutions are
+//! checked the same way, and some must exist. Counts by degree are printed
 //! (`cargo test --test knot_families_real -- --nocapture`).
 #![allow(clippy::unwrap_used)]
 
@@ -16,9 +21,7 @@ mod common;
 use std::io::Read;
 
 use common::SplitMix64;
-use common::families::{
-    SetBox, check_solution, plant, planted_found, random_parameter, random_target_near, setup,
-};
+use common::families::{SetBox, check_solution, plant, planted_found, random_parameter, setup};
 use knotshape::shape::family::{Family, FamilyChoice, solve_families};
 use knotshape::shape::{ShapeQuery, Side};
 use knotshape::spline::{Curve, CurveLimits};
@@ -81,6 +84,9 @@ fn real_curves_through_every_family() {
     let mut counts = [Counts::default(); 13];
     let mut failures = Vec::new();
     let mut rng = SplitMix64::new(0x7265_616c);
+    // The random targets draw from their own generator, so that the planted cases do not
+    // depend on how a random target is made.
+    let mut target_rng = SplitMix64::new(0x7461_7267_6574);
     for (degree, count) in counts.iter_mut().enumerate().skip(2) {
         let candidates: Vec<&RealCurve> = curves
             .iter()
@@ -107,7 +113,7 @@ fn real_curves_through_every_family() {
             for _ in 0..2 {
                 let t = random_parameter(&mut rng, &curve);
                 count.parameters += 1;
-                if let Err(e) = one_parameter(&mut rng, &curve, t, count) {
+                if let Err(e) = one_parameter(&mut rng, &mut target_rng, &curve, t, count) {
                     failures.push(format!("{} (degree {degree}) at t = {t}: {e}", real.id));
                 }
             }
@@ -139,15 +145,45 @@ fn real_curves_through_every_family() {
         failures.len(),
         failures.join("\n")
     );
-    // The fixed sample plants 85 targets, 36 of them required (inside their box by 1e-7 and
+    // The fixed sample plants 87 targets, 28 of them required (inside their box by 1e-7 and
     // determined); a change of the sample that drops most of them weakens the test.
-    assert!(total.required >= 30, "{total:?}");
+    assert!(total.required >= 24, "{total:?}");
+    // Random targets are reached (86 solutions with this sample); none at all would mean
+    // the random half of the test checks nothing.
+    assert!(total.random_solutions >= 20, "{total:?}");
+}
+
+/// A target on the way from `s(t)` to a random convex combination of `poles` (the set's
+/// control points), a log-uniform fraction 10⁻⁴–10⁻¹ of the way.
+fn random_target_towards_poles(
+    rng: &mut SplitMix64,
+    curve: &Curve,
+    poles: &[usize],
+    t: f64,
+) -> [f64; 3] {
+    let coordinate = |p: &[f64], k: usize| p.get(k).copied().unwrap_or(0.0);
+    let point = curve.point(t).unwrap();
+    let weights: Vec<f64> = poles.iter().map(|_| rng.unit()).collect();
+    let total: f64 = weights.iter().sum::<f64>().max(1e-12);
+    let mut hull_point = [0.0; 3];
+    for (&i, w) in poles.iter().zip(&weights) {
+        let d = &curve.control_points()[i];
+        for (k, value) in hull_point.iter_mut().enumerate() {
+            *value += w / total * coordinate(d, k);
+        }
+    }
+    let fraction = 10f64.powf(rng.range(-4.0, -1.0));
+    [0, 1, 2].map(|k| {
+        let s = coordinate(&point, k);
+        s + fraction * (hull_point[k] - s)
+    })
 }
 
 /// One parameter of one curve: a planted target (every family solves it), and a random
 /// target near `s(t)`.
 fn one_parameter(
     rng: &mut SplitMix64,
+    target_rng: &mut SplitMix64,
     curve: &Curve,
     t: f64,
     counts: &mut Counts,
@@ -221,8 +257,8 @@ fn one_parameter(
             }
             counts.found += 1;
         }
-        // A random target near s(t) for the same problem.
-        let target = random_target_near(rng, curve, &problem);
+        // A random target near s(t) for the same problem, towards its poles.
+        let target = random_target_towards_poles(target_rng, curve, &problem.poles, t);
         let outcome = solve_families(&query, choice, target);
         counts.random_solutions += outcome.solutions.len();
         check(target, &outcome.solutions)?;

@@ -1,4 +1,4 @@
-//! Regression cases of four solver defects in src/shape/family, each found by
+//! Regression cases of five solver defects in src/shape/family, each found by
 //! tests/knot_families_properties.rs and fixed since. One deterministic case per defect: a
 //! curve, `t`, a family, the unknown set and the solution planted there (the target is the
 //! new curve's point at `t`, by the tests' own de Boor); the answer of that family must hold
@@ -26,18 +26,12 @@
 //!   neighbourhood narrower than 1e-6 of the box gets 64 boxes of its own, and the
 //!   candidates left are one per cluster of touching boxes (docs/method.md §31.4).
 //!
-//! Open (not fixed; the case asserts what the solver does today, and fails once it is fixed):
-//!
-//! * D5 — a degree-4 curve's direct pair of two neighbouring knots below `t` (full indices
-//!   5, 6; both between the fixed knot 1.0826 and `t`): the brute force finds a
-//!   well-conditioned root (conditioning 2.6e-2, 0.16 of the box inside) that the answer
-//!   lacks, in main's subdivision as in this one (found by the regions property, seed
-//!   0x0b0ff5ffb45fdb51, whose case asserts exactly this mismatch). Seen so far: the pair is
-//!   local `(q − 1, q)` (subdivision), it takes all its 4096 boxes, and what comes back is
-//!   only uncertified candidates at `t_q ≈ ũ` (the span closing onto `t` from below, the box's
-//!   edge `s₁ = 1`, `t_{q−1} ≈ 1.8704`), none of them a solution; the root at
-//!   `(2.231, 2.901)` is never reached. Likely fix: the factor of `F` that vanishes where
-//!   `t_q = ũ` (a collapse like D3's) divided out, or that edge excluded, before subdividing.
+//! * D5 — a degree-4 curve's direct pair of two neighbouring knots below `t` (local
+//!   `(q − 1, q)`) with `t` 3e-9 below the next knot: the span nearly collapses at the box's
+//!   edge `t_q = ũ`, where `F` stays within the rounding margin of zero all along the edge;
+//!   the depth-first subdivision spent its 4096 boxes on that sliver before it reached the
+//!   well-conditioned root at `(2.231, 2.901)`. The subdivision now takes the largest boxes
+//!   first, so a budget that runs out leaves only the narrowest boxes undecided.
 #![allow(clippy::unwrap_used)]
 
 mod common;
@@ -209,13 +203,11 @@ fn d4_both_solutions_next_to_a_fold_are_found() {
     );
 }
 
-/// D5 (open): the regions property's case 0x0b0ff5ffb45fdb51 (a random degree-4 2D curve):
-/// the direct pair (u_5, u_6) has one well-conditioned root for this target that the answer
-/// lacks. Asserted as it is today: the brute force has the root, the answer does not (and
-/// every solution it gives checks out). When this fails because the root is found, D5 is
-/// fixed: move the case to `assert_found` and drop the property's exception.
+/// D5: the regions property's case 0x0b0ff5ffb45fdb51 (a random degree-4 2D curve): the
+/// direct pair (u_5, u_6) has one well-conditioned root for this target, which the answer
+/// must hold (and every solution it gives must check out).
 #[test]
-fn d5_open_a_neighbour_pair_below_t_misses_a_well_conditioned_root() {
+fn d5_neighbour_pair_below_a_near_collapsed_span_finds_its_root() {
     use common::SplitMix64;
     use common::families::{BruteOptions, CurveKind, brute_force, random_curve, random_parameter};
     let mut rng = SplitMix64::new(0x0b0f_f5ff_b45f_db51);
@@ -253,8 +245,8 @@ fn d5_open_a_neighbour_pair_below_t_misses_a_well_conditioned_root() {
     };
     assert!(planted.required());
     assert!(
-        !planted_found(&curve, &problem, &planted, &outcome.solutions),
-        "D5 is fixed: the root {:?} is found; make this an assert_found case",
+        planted_found(&curve, &problem, &planted, &outcome.solutions),
+        "the root {:?} is missing",
         required[0].x
     );
 }

@@ -106,6 +106,10 @@ fn max_deviation_between(
     let squared = match (p, curve.is_rational() || moved.is_rational()) {
         (3, false) => maximum_squared_gap::<3, 4, 1, 7>(gap),
         (3, true) => maximum_squared_gap::<3, 4, 2, 13>(gap),
+        // Degrees 4 and 5 with arrays sized for quintics: the pieces are copied on every
+        // split, and with the widest size a quintic's deviation took 15% more instructions.
+        (4..=5, false) => maximum_squared_gap::<0, 6, 1, 11>(gap),
+        (4..=5, true) => maximum_squared_gap::<0, 6, 2, 21>(gap),
         (_, false) => maximum_squared_gap::<0, { MAX_DEGREE + 1 }, 1, { 2 * MAX_DEGREE + 1 }>(gap),
         (_, true) => maximum_squared_gap::<0, { MAX_DEGREE + 1 }, 2, { MAX_RATIO_DEGREE + 1 }>(gap),
     };

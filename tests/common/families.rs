@@ -1257,10 +1257,24 @@ fn solve_small(m: &[[f64; 3]; 3], g: &[f64; 3], k: usize) -> Option<[f64; 3]> {
 /// point over `σ_min` and by ten times the returned solution's own residual over `σ_min`
 /// (its first-order distance from the root it approximates: a closed form near a region's
 /// edge may return a point within the solver's acceptance that is farther from the root
-/// than rounding); `residual` is relative to the acting poles' extent. At most 1e-2.
-pub fn match_tolerance(conditioning: f64, residual: f64) -> f64 {
+/// than rounding); `residual` and `rounding` ([`rounding`]) are relative to the acting
+/// poles' extent. At most 1e-2.
+pub fn match_tolerance(conditioning: f64, residual: f64, rounding: f64) -> f64 {
     let c = conditioning.max(1e-300);
-    (1e-12 / c).max(10.0 * residual / c).clamp(INSIDE, 1e-2)
+    (rounding / c).max(10.0 * residual / c).clamp(INSIDE, 1e-2)
+}
+
+/// The rounding of a point of `setup`'s problem relative to its acting poles' extent:
+/// `10⁻¹²`, times the ratio of the poles' largest coordinate to their extent when that is
+/// above one (a small fillet far from the origin, as in real CAD models, evaluates with the
+/// rounding of its large coordinates).
+pub fn rounding(curve: &Curve, setup: &Setup) -> f64 {
+    let magnitude = setup
+        .poles
+        .iter()
+        .flat_map(|&i| curve.control_points()[i].iter())
+        .fold(0.0f64, |m, v| m.max(v.abs()));
+    1e-12 * (magnitude / setup.size).max(1.0)
 }
 
 /// The residual of a returned solution (the tests' own de Boor), relative to the acting
@@ -1393,7 +1407,12 @@ pub fn compare_with_brute_force(
                 continue;
             }
             let found = answer_x.iter().zip(&answer_r).any(|(a, &r)| {
-                same_point(&sbox, a, &root.x, match_tolerance(root.conditioning, r))
+                same_point(
+                    &sbox,
+                    a,
+                    &root.x,
+                    match_tolerance(root.conditioning, r, rounding(curve, setup)),
+                )
             });
             if root.conditioning < DETERMINED {
                 counts.undetermined += 1;
@@ -1431,7 +1450,7 @@ pub fn compare_with_brute_force(
             if c < DETERMINED {
                 continue;
             }
-            let tolerance = match_tolerance(c, r);
+            let tolerance = match_tolerance(c, r, rounding(curve, setup));
             if brute
                 .roots
                 .iter()
@@ -1600,7 +1619,7 @@ pub fn planted_found(
                 &sbox,
                 &a,
                 &planted.x,
-                match_tolerance(planted.conditioning, r),
+                match_tolerance(planted.conditioning, r, rounding(curve, setup)),
             )
         })
 }

@@ -20,6 +20,9 @@
 //! loop, its two tests, the preconditioning, the clip that cuts boxes down and the
 //! neighbourhoods' budget are read together; split apart they would only call each other.
 
+use std::cmp::Ordering;
+use std::collections::BinaryHeap;
+
 use super::tensor::{MAX_VARIABLES, Tensor};
 
 /// A coefficient within `ZERO_MARGIN` times its component's largest coefficient (on the
@@ -104,6 +107,35 @@ struct Cell {
     neighbourhood: Option<usize>,
 }
 
+/// A cell ordered by its area (the product of its widths), the largest greatest.
+struct ByArea(Cell);
+
+impl ByArea {
+    fn area(&self) -> f64 {
+        self.0.width.iter().product()
+    }
+}
+
+impl PartialEq for ByArea {
+    fn eq(&self, other: &Self) -> bool {
+        self.cmp(other) == Ordering::Equal
+    }
+}
+
+impl Eq for ByArea {}
+
+impl PartialOrd for ByArea {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+impl Ord for ByArea {
+    fn cmp(&self, other: &Self) -> Ordering {
+        self.area().total_cmp(&other.area())
+    }
+}
+
 /// A box left undecided: its corner, widths and `max_i |F_i(c)|` at its centre.
 struct Candidate {
     lo: [f64; MAX_VARIABLES],
@@ -151,13 +183,18 @@ pub fn isolate(
     let mut candidates: Vec<Candidate> = Vec::new();
     // Boxes each neighbourhood may still examine.
     let mut shares: Vec<usize> = Vec::new();
-    let mut stack = vec![Cell {
+    // Largest boxes first: the boxes examined do not depend on the order, but when the
+    // budget runs out, what is left undecided is then the narrowest boxes (a sliver where a
+    // near-collapsed span makes F vanish within rounding along an edge), not the root
+    // elsewhere that a depth-first order would have reached after the sliver.
+    let mut stack = BinaryHeap::new();
+    stack.push(ByArea(Cell {
         lo: [0.0; MAX_VARIABLES],
         width: [1.0, 1.0, 1.0].map(|w: f64| w),
         system: system.clone(),
         neighbourhood: None,
-    }];
-    while let Some(mut cell) = stack.pop() {
+    }));
+    while let Some(ByArea(mut cell)) = stack.pop() {
         if isolation.boxes >= options.max_boxes {
             isolation.exhausted = true;
             candidates.push(Candidate::of(&cell, n));
@@ -210,7 +247,7 @@ pub fn isolate(
             };
             if (0..n).all(|k| cell.width[k] > options.min_width) {
                 if let Some(reduced) = reduce(&cell, n, &interval) {
-                    stack.push(reduced);
+                    stack.push(ByArea(reduced));
                     continue;
                 }
             }
@@ -229,18 +266,18 @@ pub fn isolate(
         right_width[k] *= 1.0 - CUT;
         let mut right_lo = cell.lo;
         right_lo[k] += left_width[k];
-        stack.push(Cell {
+        stack.push(ByArea(Cell {
             lo: right_lo,
             width: right_width,
             system: right,
             neighbourhood: cell.neighbourhood,
-        });
-        stack.push(Cell {
+        }));
+        stack.push(ByArea(Cell {
             lo: cell.lo,
             width: left_width,
             system: left,
             neighbourhood: cell.neighbourhood,
-        });
+        }));
     }
     isolation
         .roots
