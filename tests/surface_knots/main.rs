@@ -1,0 +1,7 @@
+//! The knot method for surfaces (`knotshape::surface::edit::knots`): the worked example of
+//! the study, properties over random surfaces checked by an independent evaluator, and the
+//! real surfaces of the corpus.
+#![allow(clippy::unwrap_used)]
+
+mod reference;
+mod worked_example;
