@@ -3,5 +3,10 @@
 //! real surfaces of the corpus.
 #![allow(clippy::unwrap_used)]
 
+mod completeness;
+mod mixed;
+mod properties;
+mod random;
+mod real;
 mod reference;
 mod worked_example;

@@ -72,6 +72,16 @@ impl Net {
         [sum[0] / sum[3], sum[1] / sum[3], sum[2] / sum[3]]
     }
 
+    /// The domain `((u_lo, u_hi), (v_lo, v_hi))`.
+    pub fn domain(&self) -> ((f64, f64), (f64, f64)) {
+        let (pu, pv) = self.degrees;
+        let (nu, nv) = (self.poles.len(), self.poles[0].len());
+        (
+            (self.knots_u[pu], self.knots_u[nu]),
+            (self.knots_v[pv], self.knots_v[nv]),
+        )
+    }
+
     /// `S(u, v)` with the net's knots.
     pub fn point(&self, u: f64, v: f64) -> [f64; 3] {
         self.point_with(&self.knots_u, &self.knots_v, u, v)

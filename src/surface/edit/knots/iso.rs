@@ -118,6 +118,10 @@ pub(crate) fn surface_solution(
         point,
         residual,
         affected_domain,
+        changed_ranges: match direction {
+            Direction::U => [Some(solution.affected_domain), None],
+            Direction::V => [None, Some(solution.affected_domain)],
+        },
         conditioning: solution.conditioning,
     })
 }

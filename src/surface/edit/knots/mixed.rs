@@ -193,12 +193,45 @@ pub(crate) fn plane_roots(rows: &[LocalProblem], m: usize, budget: &mut usize) -
     let isolation = isolate(&det, 1, options, &|_, _| false);
     *budget = budget.saturating_sub(isolation.boxes);
     let (lo, hi) = search.admissible[0];
+    let slope = det.derivative(0);
     isolation
         .roots
         .iter()
-        .map(|root| rows[0].knots_at(&search, root.point)[m].clamp(lo, hi))
+        .map(|root| {
+            let s = newton(&det, &slope, root.point[0]);
+            rows[0].knots_at(&search, [s, 0.0, 0.0])[m].clamp(lo, hi)
+        })
         .collect()
 }
+
+/// Newton's method on the univariate polynomial `f` (derivative `slope`) from `start`, kept
+/// in the unit interval; a step that does not lower `|f|` ends it (the isolating box's
+/// centre is only within the box's width of the root).
+fn newton(f: &Tensor, slope: &Tensor, start: f64) -> f64 {
+    let value = |s: f64| {
+        let mut out = [0.0];
+        f.evaluate([s, 0.0, 0.0], &mut out);
+        out[0]
+    };
+    let (mut s, mut fs) = (start, value(start));
+    for _ in 0..NEWTON_STEPS {
+        let mut d = [0.0];
+        slope.evaluate([s, 0.0, 0.0], &mut d);
+        if d[0] == 0.0 || fs == 0.0 {
+            break;
+        }
+        let next = (s - fs / d[0]).clamp(0.0, 1.0);
+        let fn_ = value(next);
+        if fn_.is_nan() || fn_.abs() >= fs.abs() {
+            break;
+        }
+        (s, fs) = (next, fn_);
+    }
+    s
+}
+
+/// Newton steps at most on the plane condition.
+const NEWTON_STEPS: usize = 40;
 
 /// Every mixed solution with two unknown knots along `pair` (module docs).
 pub(crate) fn solve_mixed(
@@ -368,7 +401,7 @@ impl Move<'_> {
         let range_b = affected_range(surface.axis(single), &knots_b, &changed_b)?;
         let conditioning = self.conditioning(net, tb);
         let region = self.name(pair);
-        let (knots_u, knots_v, changed_u, changed_v, affected) = match pair {
+        let (knots_u, knots_v, changed_u, changed_v, ranges) = match pair {
             Direction::U => (knots_a, knots_b, changed_a, changed_b, [range_a, range_b]),
             Direction::V => (knots_b, knots_a, changed_b, changed_a, [range_b, range_a]),
         };
@@ -382,7 +415,8 @@ impl Move<'_> {
             region,
             point,
             residual,
-            affected_domain: affected,
+            affected_domain: surface.domain(),
+            changed_ranges: ranges.map(Some),
             conditioning,
         })
     }

@@ -120,9 +120,16 @@ pub struct SurfaceKnotSolution {
     /// `|point - target|`.
     pub residual: f64,
     /// `[(u_lo, u_hi), (v_lo, v_hi)]`: outside this rectangle the new surface equals the old
-    /// one (a direction whose knots did not change spans its whole domain only when the other
-    /// changed: the strip of a one-direction move).
+    /// one. A one-direction move changes a strip (its range × the other direction's whole
+    /// domain); a mixed move changes the union of a `u` strip and a `v` strip, whose
+    /// bounding rectangle is the whole domain ([`SurfaceKnotSolution::changed_ranges`] is
+    /// finer).
     pub affected_domain: [(f64, f64); 2],
+    /// `[u range, v range]` of the strips that change: the new surface equals the old one
+    /// wherever `u` lies outside the first and `v` outside the second (`None`: that
+    /// direction's knots did not change). Each range is `[t_{k_min − p}, t_{k_max + p}]` of
+    /// the changed knots `k`, over the old and the new values.
+    pub changed_ranges: [Option<(f64, f64)>; 2],
     /// The smallest singular value of `∂S(ũ, ṽ)/∂(unknown knots)`, each knot scaled by its
     /// room, over the local control points' extent: small near a fold or for a knot far
     /// from the point (for tie-breaking: larger is better determined).
