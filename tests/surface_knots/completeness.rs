@@ -4,13 +4,12 @@
 //! differences on the reference evaluator), and every solution found inside the box must be
 //! among the solver's.
 
-use knotshape::surface::Direction;
-use knotshape::surface::edit::knots::{
-    SurfaceKnotFamily, SurfaceKnotSolution, solve_surface_knots,
-};
-
 use crate::random::{Rng, net, parameter};
 use crate::reference::{Net, distance};
+use knotshape::surface::Direction;
+use knotshape::surface::edit::knots::{
+    SurfaceKnotFamily, SurfaceKnotOptions, SurfaceKnotSolution, solve_surface_knots_with,
+};
 
 /// One direction's part of a mixed set: the knot set to the parameter (envelope), and the
 /// unknown knots (full indices).
@@ -264,7 +263,13 @@ fn solve3(j: [[f64; 3]; 3], r: [f64; 3]) -> Option<[f64; 3]> {
 /// Every brute-force solution of every mixed set is among the solver's.
 fn complete(net: &Net, (u, v): (f64, f64), target: [f64; 3]) -> (usize, usize) {
     let surface = net.surface();
-    let solutions: Vec<SurfaceKnotSolution> = solve_surface_knots(&surface, u, v, target, true);
+    // The single knot of the direct problems too (the option's superset of the default).
+    let options = SurfaceKnotOptions {
+        mixed_direct: true,
+        ..SurfaceKnotOptions::all(true)
+    };
+    let solutions: Vec<SurfaceKnotSolution> =
+        solve_surface_knots_with(&surface, u, v, target, &options);
     let mut brute = 0;
     for pair in [Direction::U, Direction::V] {
         let (ka, pa, ta, kb, pb, tb) = match pair {

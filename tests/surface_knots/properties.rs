@@ -3,7 +3,9 @@
 //! through the target at `(ũ, ṽ)`, its knots obey the rules, its surface object is the net
 //! with its knots, and it equals the old surface outside its `affected_domain`.
 
-use knotshape::surface::edit::knots::{SurfaceKnotSolution, solve_surface_knots};
+use knotshape::surface::edit::knots::{
+    SurfaceKnotOptions, SurfaceKnotSolution, solve_surface_knots_with,
+};
 use proptest::prelude::*;
 
 use crate::random::{Rng, net, parameter};
@@ -147,7 +149,12 @@ proptest! {
     fn every_solution_passes_through_the_target_and_stays_local(seed in any::<u64>()) {
         let (net, (u, v), target) = case(seed);
         let surface = net.surface();
-        let solutions = solve_surface_knots(&surface, u, v, target, true);
+        // Every other case with the mixed moves' direct single knots too.
+        let options = SurfaceKnotOptions {
+            mixed_direct: seed % 2 == 1,
+            ..SurfaceKnotOptions::all(true)
+        };
+        let solutions = solve_surface_knots_with(&surface, u, v, target, &options);
         let mut rng = Rng::new(seed ^ 0x5eed);
         for solution in &solutions {
             if let Err(breach) = check_solution(&net, (u, v), target, solution, &mut rng) {

@@ -30,19 +30,18 @@
 //! curved patch, no plane condition) get no mixed moves.
 
 use super::iso::{iso_curve_along, movable};
+use super::plane::plane_roots;
 use super::{
     SurfaceKnotFamily, SurfaceKnotOptions, SurfaceKnotSolution, accepted_residual, affected_range,
     along, with_knots,
 };
 use crate::shape::Side;
-use crate::shape::family::isolate::{IsolationOptions, isolate};
 use crate::shape::family::local::LocalProblem;
 use crate::shape::family::problems::{
     Family, FamilyProblem, direct_problem, envelope_problem, extent, plane_of, unknown_sets,
 };
-use crate::shape::family::roots::{SEARCH_MARGIN, solve_unknowns};
+use crate::shape::family::roots::solve_unknowns;
 use crate::shape::family::solve::{knots_admissible, smallest_singular_value};
-use crate::shape::family::tensor::Tensor;
 use crate::spline::Curve;
 use crate::spline::vector::{Point, distance};
 use crate::surface::{Direction, Surface};
@@ -64,14 +63,15 @@ pub(crate) struct Side1 {
 
 /// The local problems of `curve` at `t` usable in a mixed move: for the pair direction
 /// (`pair = true`) those with `q = 2` (the envelope of a cubic, both sides; the direct
-/// problem of a quadratic), for the single direction every envelope side and the direct
-/// problem. Problems that do not apply (domain end, empty span) are left out; collinear
+/// problem of a quadratic), for the single direction every envelope side and, when `direct`,
+/// the direct problem. Problems that do not apply (domain end, empty span) are left out; collinear
 /// iso-curve poles are not a reason here (the rows' poles are used instead).
 pub(crate) fn direction_problems(
     curve: &Curve,
     t: f64,
     keep_domain: bool,
     pair: bool,
+    direct: bool,
 ) -> Vec<Side1> {
     let p = curve.degree();
     let mut problems = Vec::new();
@@ -81,7 +81,7 @@ pub(crate) fn direction_problems(
             problems.push(envelope_problem(curve, t, side, keep_domain));
         }
     }
-    if !pair || p == 2 {
+    if (!pair && direct) || (pair && p == 2) {
         problems.push(direct_problem(curve, t, Family::Direct));
     }
     problems
@@ -151,88 +151,6 @@ pub(crate) fn rows_of(
         .collect()
 }
 
-/// The roots `c` (knot values) of the plane condition `g` of the rows `rows` (poles already
-/// shifted by the target) for the unknown local knot `m` of `B`, by certified isolation of
-/// its Bernstein form; `budget` boxes at most.
-pub(crate) fn plane_roots(rows: &[LocalProblem], m: usize, budget: &mut usize) -> Vec<f64> {
-    let Some(search) = rows[0].search_box(&[m], SEARCH_MARGIN, 0.0) else {
-        return Vec::new();
-    };
-    if search.admissible[0].1 <= search.admissible[0].0 {
-        return Vec::new();
-    }
-    let r: Vec<[Tensor; 3]> = rows
-        .iter()
-        .map(|row| {
-            let numerator = row.numerator(&search).scaled();
-            [0, 1, 2].map(|c| {
-                let mut weights = [0.0; 4];
-                weights[c] = 1.0;
-                numerator.combine(&weights)
-            })
-        })
-        .collect();
-    let minor = |a: &Tensor, b: &Tensor, c: &Tensor, d: &Tensor| {
-        a.times(b).plus(&c.times(d).combine(&[-1.0]))
-    };
-    let det = r[0][0]
-        .times(&minor(&r[1][1], &r[2][2], &r[1][2], &r[2][1]))
-        .plus(&r[0][1].times(&minor(&r[1][2], &r[2][0], &r[1][0], &r[2][2])))
-        .plus(&r[0][2].times(&minor(&r[1][0], &r[2][1], &r[1][1], &r[2][0])))
-        .unscaled();
-    let largest = det.coefficients.iter().fold(0.0f64, |m, c| m.max(c.abs()));
-    if largest == 0.0 || !largest.is_finite() {
-        // Identically zero: the three rows stay in one plane with the target (a planar
-        // net); the one-direction families serve that case.
-        return Vec::new();
-    }
-    let options = IsolationOptions {
-        max_boxes: (*budget).min(2048),
-        ..IsolationOptions::default()
-    };
-    let isolation = isolate(&det, 1, options, &|_, _| false);
-    *budget = budget.saturating_sub(isolation.boxes);
-    let (lo, hi) = search.admissible[0];
-    let slope = det.derivative(0);
-    isolation
-        .roots
-        .iter()
-        .map(|root| {
-            let s = newton(&det, &slope, root.point[0]);
-            rows[0].knots_at(&search, [s, 0.0, 0.0])[m].clamp(lo, hi)
-        })
-        .collect()
-}
-
-/// Newton's method on the univariate polynomial `f` (derivative `slope`) from `start`, kept
-/// in the unit interval; a step that does not lower `|f|` ends it (the isolating box's
-/// centre is only within the box's width of the root).
-fn newton(f: &Tensor, slope: &Tensor, start: f64) -> f64 {
-    let value = |s: f64| {
-        let mut out = [0.0];
-        f.evaluate([s, 0.0, 0.0], &mut out);
-        out[0]
-    };
-    let (mut s, mut fs) = (start, value(start));
-    for _ in 0..NEWTON_STEPS {
-        let mut d = [0.0];
-        slope.evaluate([s, 0.0, 0.0], &mut d);
-        if d[0] == 0.0 || fs == 0.0 {
-            break;
-        }
-        let next = (s - fs / d[0]).clamp(0.0, 1.0);
-        let fn_ = value(next);
-        if fn_.is_nan() || fn_.abs() >= fs.abs() {
-            break;
-        }
-        (s, fs) = (next, fn_);
-    }
-    s
-}
-
-/// Newton steps at most on the plane condition.
-const NEWTON_STEPS: usize = 40;
-
 /// Every mixed solution with two unknown knots along `pair` (module docs).
 pub(crate) fn solve_mixed(
     surface: &Surface,
@@ -254,8 +172,8 @@ pub(crate) fn solve_mixed(
     let accepted = accepted_residual(surface, u, v, target);
     let mut budget = MIXED_BOXES;
     let mut found: Vec<SurfaceKnotSolution> = Vec::new();
-    let b_problems = direction_problems(&curve_b, tb, keep, false);
-    for a in direction_problems(&curve_a, ta, keep, true) {
+    let b_problems = direction_problems(&curve_b, tb, keep, false, options.mixed_direct);
+    for a in direction_problems(&curve_a, ta, keep, true, false) {
         let pairs = unknown_sets(&a.local, 2, &curve_a, keep);
         for b in &b_problems {
             let shifted = rows_of(net, &a, b, tb, target);

@@ -15,6 +15,7 @@
 
 mod iso;
 mod mixed;
+mod plane;
 mod reach;
 
 use crate::shape::family::{Family, FamilyChoice};
@@ -82,6 +83,10 @@ pub struct SurfaceKnotOptions {
     pub iso_v: bool,
     /// Run the mixed moves.
     pub mixed: bool,
+    /// Let the mixed moves' single knot also be one of the direct problem's (no knot set to
+    /// the parameter in that direction), beside the envelope's of both sides: more reach,
+    /// some 40 % more time (docs/method.md §46, §48).
+    pub mixed_direct: bool,
 }
 
 impl SurfaceKnotOptions {
@@ -93,6 +98,7 @@ impl SurfaceKnotOptions {
             iso_u: true,
             iso_v: true,
             mixed: true,
+            mixed_direct: false,
         }
     }
 }
