@@ -2,7 +2,7 @@
 //! the fraction of a ball of radius `f·L` around `S(ũ, ṽ)` that the solve reaches, by family,
 //! on random bicubics. Prints a Markdown table; no timing.
 //!
-//! `cargo bench --bench surface_knot_reach` (options after `--`: `--surfaces N`, default 8;
+//! `cargo bench --bench surface_knot_reach` (options after `--`: `--surfaces N`, default 12;
 //! `--grid M`, targets on an `M³` grid of the ball's cube, default 11 as in the study).
 //!
 //! The samples follow the study's `check14_surface_reach3d.py`: 12 × 12 poles over a unit grid
@@ -58,7 +58,7 @@ fn main() {
             .and_then(|v| v.parse().ok())
             .unwrap_or(default)
     };
-    let count = option("--surfaces", 8);
+    let count = option("--surfaces", 12);
     let grid = option("--grid", 11);
     let mut rng = Rng(18);
     let (n, p) = (12usize, 3usize);

@@ -33,7 +33,7 @@ use super::iso::{iso_curve_along, movable};
 use super::plane::plane_roots;
 use super::{
     SurfaceKnotFamily, SurfaceKnotOptions, SurfaceKnotSolution, accepted_residual, affected_range,
-    along, with_knots,
+    along, with_both_knots,
 };
 use crate::shape::Side;
 use crate::shape::family::local::LocalProblem;
@@ -213,12 +213,11 @@ pub(crate) fn solve_mixed(
                                 target,
                                 accepted,
                                 keep,
+                                &found,
                             ) else {
                                 continue;
                             };
-                            if !found.iter().any(|s| same_knots(s, &solution)) {
-                                found.push(solution);
-                            }
+                            found.push(solution);
                         }
                     }
                 }
@@ -244,11 +243,6 @@ pub(crate) fn singles(local: &LocalProblem, curve: &Curve, keep_domain: bool) ->
 /// The projected point of a homogeneous one.
 fn project(h: [f64; 4]) -> Point {
     [h[0] / h[3], h[1] / h[3], h[2] / h[3]]
-}
-
-/// Whether two solutions have the same knots.
-fn same_knots(a: &SurfaceKnotSolution, b: &SurfaceKnotSolution) -> bool {
-    a.knots_u == b.knots_u && a.knots_v == b.knots_v
 }
 
 /// One solved mixed move in local terms.
@@ -279,7 +273,8 @@ impl Move<'_> {
     }
 
     /// The surface solution, `None` when a rule drops it (either direction's knots not
-    /// admissible, or the new surface misses the target at `(u, v)` by more than `accepted`).
+    /// admissible, or the new surface misses the target at `(u, v)` by more than `accepted`)
+    /// or when `found` holds it already.
     #[allow(clippy::too_many_arguments)]
     pub fn solution(
         &self,
@@ -290,6 +285,7 @@ impl Move<'_> {
         target: Point,
         accepted: f64,
         keep: bool,
+        found: &[SurfaceKnotSolution],
     ) -> Option<SurfaceKnotSolution> {
         let surface = net.surface;
         let (pair, single) = (net.pair, net.pair.other());
@@ -300,11 +296,17 @@ impl Move<'_> {
         {
             return None;
         }
-        let new = with_knots(
-            &with_knots(surface, pair, knots_a.clone()),
-            single,
-            knots_b.clone(),
-        );
+        let (knots_u, knots_v) = match pair {
+            Direction::U => (&knots_a, &knots_b),
+            Direction::V => (&knots_b, &knots_a),
+        };
+        let known = found
+            .iter()
+            .any(|s| s.knots_u.as_ref() == Some(knots_u) && s.knots_v.as_ref() == Some(knots_v));
+        if known {
+            return None;
+        }
+        let new = with_both_knots(surface, knots_u.clone(), knots_v.clone());
         let point = new.point(u, v);
         let residual = distance(point, target);
         if residual.is_nan() || residual > accepted {

@@ -213,6 +213,21 @@ pub(crate) fn with_knots(surface: &Surface, direction: Direction, knots: Vec<f64
     )
 }
 
+/// `surface` with both full knot vectors replaced (same degrees and lengths; neither
+/// direction periodic).
+pub(crate) fn with_both_knots(surface: &Surface, knots_u: Vec<f64>, knots_v: Vec<f64>) -> Surface {
+    let axis = |direction: Direction, knots: Vec<f64>| {
+        let old = surface.axis(direction);
+        Axis::from_valid_parts(old.degree(), knots, old.convention(), None)
+    };
+    Surface::from_valid_parts(
+        axis(Direction::U, knots_u),
+        axis(Direction::V, knots_v),
+        surface.control_points().to_vec(),
+        surface.weights().map(<[f64]>::to_vec),
+    )
+}
+
 /// The rows of `[lo, hi]` a knot change in one direction affects: from `knots[i_min - p]` to
 /// `knots[i_max + p]` (clamped to the domain), over the old and the new knots.
 pub(crate) fn affected_range(
