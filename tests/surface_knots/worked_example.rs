@@ -142,3 +142,27 @@ fn the_worked_example_has_the_study_numbers() {
         }
     }
 }
+
+#[test]
+fn a_target_out_of_reach_gets_a_nearer_reachable_point() {
+    let net = example();
+    let surface = net.surface();
+    let point = net.point(0.5, 0.5);
+    let far = [point[0] + 0.6, point[1] - 0.4, point[2] + 0.5];
+    assert!(solve_surface_knots(&surface, 0.5, 0.5, far, true).is_empty());
+    let members = surface_knot_membership(&surface, 0.5, 0.5, far, true);
+    assert!(!members.is_empty() && members.iter().all(|m| !m.contains));
+    let near = nearest_surface_knot_target(&surface, 0.5, 0.5, far, true).unwrap();
+    assert!(
+        distance(near, far) < distance(point, far) - 1e-3,
+        "{near:?}"
+    );
+    // The point claimed is reached (the solver, then the independent evaluator).
+    let reached = solve_surface_knots(&surface, 0.5, 0.5, near, true);
+    assert!(!reached.is_empty());
+    for s in &reached {
+        let ku = s.knots_u.clone().unwrap_or_else(|| net.knots_u.clone());
+        let kv = s.knots_v.clone().unwrap_or_else(|| net.knots_v.clone());
+        assert!(distance(net.point_with(&ku, &kv, 0.5, 0.5), near) < 1e-9);
+    }
+}

@@ -188,6 +188,10 @@ pub(crate) fn solve_mixed(
                     let Some([e1, e2, _]) = plane_of(&points) else {
                         continue;
                     };
+                    if outside_triangle(&points, e1, e2, target) {
+                        // Every q = 2 pair stays in the triangle's hull (monotone knots).
+                        continue;
+                    }
                     let weighted = poles.iter().any(|h| h[3] != poles[0][3]);
                     let a_c = LocalProblem {
                         poles,
@@ -225,6 +229,35 @@ pub(crate) fn solve_mixed(
         }
     }
     found
+}
+
+/// Barycentric coordinates below this (in the plane of the triangle) are outside it.
+const TRIANGLE_MARGIN: f64 = 1e-9;
+
+/// Whether `target`, in the plane `(e1, e2)` of the triangle `points`, lies outside it by
+/// more than [`TRIANGLE_MARGIN`] in a barycentric coordinate: no `q = 2` pair reaches it
+/// (with monotone knots the point is a convex combination of the poles).
+fn outside_triangle(points: &[Point], e1: Point, e2: Point, target: Point) -> bool {
+    let plane = |p: Point| {
+        let d = [
+            p[0] - points[0][0],
+            p[1] - points[0][1],
+            p[2] - points[0][2],
+        ];
+        [
+            d[0] * e1[0] + d[1] * e1[1] + d[2] * e1[2],
+            d[0] * e2[0] + d[1] * e2[1] + d[2] * e2[2],
+        ]
+    };
+    let (a, b, t) = (plane(points[1]), plane(points[2]), plane(target));
+    let det = a[0] * b[1] - a[1] * b[0];
+    if det == 0.0 || !det.is_finite() {
+        return false;
+    }
+    let beta1 = (t[0] * b[1] - t[1] * b[0]) / det;
+    let beta2 = (a[0] * t[1] - a[1] * t[0]) / det;
+    let beta0 = 1.0 - beta1 - beta2;
+    beta0.min(beta1).min(beta2) < -TRIANGLE_MARGIN
 }
 
 /// The local indices of `B`'s relevant knots that may move alone (not a domain end under

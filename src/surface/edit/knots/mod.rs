@@ -22,9 +22,10 @@ use crate::shape::family::{Family, FamilyChoice};
 use crate::spline::vector::Point;
 use crate::surface::{Axis, Direction, Surface};
 
+pub use mixed::MIXED_BOXES;
 pub use reach::{
-    SurfaceKnotMembership, SurfaceKnotRegion, nearest_surface_knot_target, surface_knot_membership,
-    surface_knot_regions,
+    DEFAULT_REGION_VERTICES, SurfaceKnotMembership, SurfaceKnotRegion, nearest_surface_knot_target,
+    surface_knot_membership, surface_knot_regions, surface_knot_regions_with,
 };
 
 /// A family of surface knot moves.
