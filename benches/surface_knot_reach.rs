@@ -3,7 +3,8 @@
 //! on random bicubics. Prints a Markdown table; no timing.
 //!
 //! `cargo bench --bench surface_knot_reach` (options after `--`: `--surfaces N`, default 12;
-//! `--grid M`, targets on an `M³` grid of the ball's cube, default 11 as in the study).
+//! `--grid M`, targets on an `M³` grid of the ball's cube, default 11 as in the study;
+//! `--mixed-direct`: the mixed moves' single knot from the direct problem too).
 //!
 //! The samples follow the study's `check14_surface_reach3d.py`: 12 × 12 poles over a unit grid
 //! jittered by `0.15·N(0, 1)` in x and y, height a doubly cumulated `0.3·N(0, 1)` times 0.3,
@@ -15,7 +16,9 @@
 
 use knotshape::shape::family::Family;
 use knotshape::spline::KnotForm;
-use knotshape::surface::edit::knots::{SurfaceKnotFamily, solve_surface_knots};
+use knotshape::surface::edit::knots::{
+    SurfaceKnotFamily, SurfaceKnotOptions, solve_surface_knots_with,
+};
 use knotshape::surface::{Direction, Surface, SurfaceLimits};
 
 /// SplitMix64.
@@ -60,6 +63,10 @@ fn main() {
     };
     let count = option("--surfaces", 12);
     let grid = option("--grid", 11);
+    let options = SurfaceKnotOptions {
+        mixed_direct: args.iter().any(|a| a == "--mixed-direct"),
+        ..SurfaceKnotOptions::all(true)
+    };
     let mut rng = Rng(18);
     let (n, p) = (12usize, 3usize);
     let radii = [0.05, 0.15];
@@ -144,7 +151,7 @@ fn main() {
                         targets += 1;
                         let target: [f64; 3] =
                             std::array::from_fn(|k| centre[k] + f * length * g[k]);
-                        let found = solve_surface_knots(&surface, u, v, target, true);
+                        let found = solve_surface_knots_with(&surface, u, v, target, &options);
                         let has = |test: &dyn Fn(SurfaceKnotFamily) -> bool| {
                             found.iter().any(|s| test(s.family))
                         };
@@ -173,7 +180,8 @@ fn main() {
         }
     }
     println!(
-        "random bicubics: {count} surfaces, {grid}³ grid of targets in the ball, domain kept\n"
+        "random bicubics: {count} surfaces, {grid}³ grid of targets in the ball, domain kept, mixed_direct {}\n",
+        options.mixed_direct
     );
     print!("| family |");
     for f in radii {
