@@ -72,7 +72,7 @@ fn the_worked_example_has_the_study_numbers() {
                 && s.knots_u.as_ref().is_some_and(|k| k[7] == 0.5)
         })
         .collect();
-    // The study's five u-pairs (the sixth, (u_5, u_8)… (u_6, u_9), reaches nothing).
+    // The study's five u-pairs (the sixth, (u_6, u_9), reaches nothing).
     let expected: [([usize; 2], [f64; 2]); 5] = [
         ([5, 6], [0.323332, 0.447657]),
         ([5, 8], [0.342545, 0.7275]),
