@@ -125,6 +125,22 @@ fn the_worked_example_has_the_study_numbers() {
     // Membership agrees; the nearest reachable point of a reachable target is itself.
     let members = surface_knot_membership(&surface, 0.5, 0.5, target, true);
     assert!(members.iter().filter(|m| m.contains).count() >= 5);
+    for s in &solutions {
+        assert!(
+            members
+                .iter()
+                .any(|m| m.contains && m.family == s.family && s.region.starts_with(&m.region)),
+            "{} has no member",
+            s.region
+        );
+    }
+    for m in members.iter().filter(|m| m.contains) {
+        assert!(
+            solutions
+                .iter()
+                .any(|s| s.family == m.family && s.region.starts_with(&m.region))
+        );
+    }
     let nearest = nearest_surface_knot_target(&surface, 0.5, 0.5, target, true).unwrap();
     assert!(distance(nearest, target) < 1e-9);
     // The right envelope side's regions lie in the plane of D_4, D_5, D_6(ṽ) (y = 4.386111).

@@ -9,6 +9,7 @@
 //! changes is its `u` range over the whole `v` domain. Periodic directions are left alone (a
 //! knot move would break the period).
 
+use super::reach::iso_set_name;
 use super::{
     SurfaceKnotFamily, SurfaceKnotOptions, SurfaceKnotSolution, accepted_residual, along,
     with_knots,
@@ -126,26 +127,15 @@ pub(crate) fn surface_solution(
     })
 }
 
-/// `"u envelope right: u_7 := ũ; u_5, u_9"` (with `Ω5` for a cubic's envelope pairs).
+/// `"u envelope right: u_7 := ũ; u_5, u_9"` (with `(Omega5)` for a cubic's envelope pairs).
 pub(crate) fn set_name(direction: Direction, solution: &KnotSolution) -> String {
-    let d = direction.name();
-    let mut name = format!("{d} {}", solution.family.name());
-    if let Some(side) = solution.side {
-        name.push(' ');
-        name.push_str(side.name());
-    }
-    name.push(':');
-    if let Some(i) = solution.moved_knot {
-        name.push_str(&format!(" {d}_{i} := {d}̃;"));
-    }
-    let knots: Vec<String> = solution
-        .knots_moved
-        .indices()
-        .iter()
-        .map(|i| format!("{d}_{i}"))
-        .collect();
-    name.push(' ');
-    name.push_str(&knots.join(", "));
+    let mut name = iso_set_name(
+        direction,
+        solution.family,
+        solution.side,
+        solution.moved_knot,
+        &solution.knots_moved,
+    );
     if let Some(omega) = solution.omega {
         name.push_str(&format!(" ({omega:?})"));
     }
