@@ -37,7 +37,7 @@ pub const INTERPOLATION_DEGREE: usize = 9;
 
 /// `n + 1` Chebyshev–Lobatto nodes on `[0, 1]` (one node, `1/2`, for `n = 0`), computed
 /// once per degree.
-fn lobatto_nodes(n: usize) -> &'static [f64] {
+pub(crate) fn lobatto_nodes(n: usize) -> &'static [f64] {
     static TABLE: std::sync::OnceLock<Vec<Vec<f64>>> = std::sync::OnceLock::new();
     let table = TABLE.get_or_init(|| {
         (0..=INTERPOLATION_DEGREE)
@@ -59,7 +59,7 @@ fn compute_lobatto_nodes(n: usize) -> Vec<f64> {
 
 /// The inverse of the Bernstein collocation matrix `V_ij = B_j^n(s_i)` at the Lobatto nodes
 /// of degree `n` (row-major), computed once per degree.
-fn collocation_inverse(n: usize) -> &'static [f64] {
+pub(crate) fn collocation_inverse(n: usize) -> &'static [f64] {
     static TABLE: std::sync::OnceLock<Vec<Vec<f64>>> = std::sync::OnceLock::new();
     let table = TABLE.get_or_init(|| (0..=INTERPOLATION_DEGREE).map(invert_collocation).collect());
     &table[n]

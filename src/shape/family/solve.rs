@@ -427,7 +427,7 @@ fn conditioning(local: &LocalProblem, knots: &[f64], unknowns: &[usize]) -> f64 
 
 /// The smallest singular value of the 3 × k matrix with columns `columns` (k = 2 or 3): the
 /// square root of the Gram matrix's smallest eigenvalue.
-fn smallest_singular_value(columns: &[Point]) -> f64 {
+pub(crate) fn smallest_singular_value(columns: &[Point]) -> f64 {
     let k = columns.len();
     let gram = |a: usize, b: usize| dot(columns[a], columns[b]);
     let eigenvalue = if k == 2 {

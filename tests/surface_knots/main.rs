@@ -1,0 +1,12 @@
+//! The knot method for surfaces (`knotshape::surface::edit::knots`): the worked example of
+//! the study, properties over random surfaces checked by an independent evaluator, and the
+//! real surfaces of the corpus.
+#![allow(clippy::unwrap_used)]
+
+mod completeness;
+mod mixed;
+mod properties;
+mod random;
+mod real;
+mod reference;
+mod worked_example;
