@@ -12,6 +12,7 @@ mod bernstein2;
 mod cells;
 mod closest;
 mod differential;
+pub mod edit;
 mod eval;
 mod iso;
 mod minimise;
