@@ -321,7 +321,7 @@ fn domain_point(plain: &Plain, (a, b): (f64, f64)) -> (f64, f64) {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 32, max_shrink_iters: 200, ..ProptestConfig::default() })]
+    #![proptest_config(ProptestConfig { cases: 128, max_shrink_iters: 200, ..ProptestConfig::default() })]
 
     /// Without constraints: the control-point move is the closed form, and every solution
     /// of both methods passes every check.

@@ -15,14 +15,15 @@
 //!   `D = (W_old W_new)²` (degrees `(4p, 4q)`, `D > 0`).
 //!
 //! A Bernstein polynomial lies within the range of its coefficients and its corner
-//! coefficients are its corner values. So `max N / min D` over a cell's coefficients bounds
-//! the squared gap from above, and the corner values bound the maximum from below. The cells
-//! wait in a queue by their upper bound; the one with the largest is halved (de Casteljau, in
-//! `σ` and `τ` by turns), its new corners raising the lower bound `best`, until the largest
-//! upper bound is within [`SURFACE_DEVIATION_RELATIVE_TOLERANCE`] of `best` (or below rounding,
-//! or [`MAX_CELLS`] cells have been halved). The answer is that largest upper bound's square
-//! root: never below the true maximum, and within the tolerance of a distance the surfaces
-//! really have when the search converged.
+//! coefficients are its corner values. So when every coefficient of `N − M D` is `<= 0`, the
+//! squared gap is at most `M` on the cell, and the corner values bound the maximum from
+//! below. The cells wait in a queue by `max N / min D`; the first is either proven below
+//! `M = best (1 + SURFACE_DEVIATION_RELATIVE_TOLERANCE)` and dropped, or halved (de Casteljau,
+//! in the direction where its coefficients change most), its new corners raising `best`. When
+//! the queue is empty the answer is `sqrt(M)`: never below the true maximum, and within the
+//! tolerance of a distance the surfaces really have. A search that runs out of its budget
+//! ([`MAX_CELLS`] halvings) answers the largest `max N / min D` left, still an upper bound.
+//! Gaps below `1e-13` of the nets' size are rounding and not refined.
 
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
@@ -35,14 +36,17 @@ use crate::surface::patches::PatchRect;
 /// Relative precision of the squared deviation: when the search converges, the answer `d`
 /// satisfies `d² <= (1 + SURFACE_DEVIATION_RELATIVE_TOLERANCE) · best²` for a squared distance
 /// `best²` the surfaces have at some parameter pair.
-pub const SURFACE_DEVIATION_RELATIVE_TOLERANCE: f64 = 1e-6;
+pub const SURFACE_DEVIATION_RELATIVE_TOLERANCE: f64 = 1e-3;
 
 /// Halvings per call at most, which bounds the time whatever the input (the answer is then
 /// still an upper bound, only looser).
-pub const MAX_CELLS: usize = 4096;
+pub const MAX_CELLS: usize = 2048;
 
 /// Gaps below this fraction of the surface's size are rounding: the search stops refining.
 const ZERO_GAP: f64 = 1e-13;
+
+/// Halvings of one cell at most.
+const MAX_DEPTH: u32 = 60;
 
 /// A tensor-product Bernstein polynomial: degrees `(m, n)`, coefficients row by row.
 #[derive(Debug, Clone)]
@@ -59,6 +63,30 @@ impl Poly {
 
     fn min(&self) -> f64 {
         self.c.iter().fold(f64::INFINITY, |a, &b| a.min(b))
+    }
+
+    /// The largest change between neighbouring coefficients along `σ` (`in_u`) or `τ`, times
+    /// the degree: how much halving in that direction can tighten the bound.
+    fn variation(&self, in_u: bool) -> f64 {
+        let (m, n) = (self.m, self.n);
+        let mut largest = 0.0f64;
+        if in_u {
+            for i in 0..m {
+                for j in 0..=n {
+                    largest = largest
+                        .max((self.c[(i + 1) * (n + 1) + j] - self.c[i * (n + 1) + j]).abs());
+                }
+            }
+            largest * m as f64
+        } else {
+            for i in 0..=m {
+                for j in 0..n {
+                    largest =
+                        largest.max((self.c[i * (n + 1) + j + 1] - self.c[i * (n + 1) + j]).abs());
+                }
+            }
+            largest * n as f64
+        }
     }
 
     /// The values at the four corners of `[0, 1]²`.
@@ -179,6 +207,20 @@ impl Cell {
             numerator,
             denominator,
             depth,
+        }
+    }
+
+    /// Whether every coefficient of `N − bound · D` is `<= 0`, so that `N / D <= bound` on the
+    /// whole cell (a tighter test than `max N / min D` where `D` varies).
+    fn below(&self, bound: f64) -> bool {
+        match &self.denominator {
+            None => self.numerator.max() <= bound,
+            Some(d) => self
+                .numerator
+                .c
+                .iter()
+                .zip(&d.c)
+                .all(|(n, d)| n - bound * d <= 0.0),
         }
     }
 
@@ -306,12 +348,17 @@ pub fn surface_max_deviation(old: &Surface, new: &Surface, rect: [(f64, f64); 2]
     let floor = (ZERO_GAP * surface_edit_size(old).max(surface_edit_size(new))).powi(2);
     let mut halvings = 0;
     while let Some(cell) = queue.pop() {
-        let converged = cell.upper <= best * (1.0 + SURFACE_DEVIATION_RELATIVE_TOLERANCE);
-        if converged || cell.upper <= floor || halvings >= MAX_CELLS || cell.depth >= 60 {
-            return cell.upper.max(best).sqrt();
+        let bound = best * (1.0 + SURFACE_DEVIATION_RELATIVE_TOLERANCE);
+        if cell.upper <= bound.max(floor) || cell.below(bound) {
+            // Proven: the squared gap stays within `bound` on this cell.
+            continue;
+        }
+        if halvings >= MAX_CELLS || cell.depth >= MAX_DEPTH {
+            // Out of budget: the largest remaining upper bound (the queue's first) stands.
+            return cell.upper.max(bound).sqrt();
         }
         halvings += 1;
-        let in_u = cell.depth % 2 == 0;
+        let in_u = cell.numerator.variation(true) >= cell.numerator.variation(false);
         let (n_low, n_high) = cell.numerator.halves(in_u);
         let (d_low, d_high) = match &cell.denominator {
             Some(d) => {
@@ -328,7 +375,13 @@ pub fn surface_max_deviation(old: &Surface, new: &Surface, rect: [(f64, f64); 2]
             queue.push(child);
         }
     }
-    best.sqrt()
+    // Every cell was proven within the bound of its time, and `best` only grew.
+    let answer = best * (1.0 + SURFACE_DEVIATION_RELATIVE_TOLERANCE);
+    if best <= floor {
+        best.sqrt()
+    } else {
+        answer.sqrt()
+    }
 }
 
 /// `Σ_c g_c²` of polynomials of equal degrees.

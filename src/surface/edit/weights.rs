@@ -384,9 +384,8 @@ pub fn closest_on_triangle(p: Point, a: Point, b: Point, c: Point) -> Point {
     add(a, add(scale(ab, v), scale(ac, w)))
 }
 
-/// Nearest-point targets are pulled this fraction of the way from the tetrahedron's surface
-/// towards its centroid, so that every barycentric coordinate is positive.
-const NEAREST_PULL: f64 = 1e-7;
+/// Barycentric coordinates of a nearest point are at least this (the open tetrahedron).
+const NEAREST_PULL: f64 = 1e-9;
 
 /// The nearest points of at most this many tetrahedra are tried (nearest first), which bounds
 /// the work of a nearest search.
@@ -496,20 +495,31 @@ impl SurfaceEditMethod for WeightsMethod {
         }
     }
 
-    /// The nearest point of the free triples' tetrahedra ([`closest_in_tetrahedron`], pulled
-    /// just inside), solved there; the nearest such point that some triple reaches within its
-    /// weight bounds and the constraints.
+    /// Per free triple, the point its weights reach nearest to the target's nearest point of
+    /// the tetrahedron ([`closest_in_tetrahedron`]): that point's weights (from its
+    /// barycentric coordinates) clamped into their bounds and mapped back. The nearest of
+    /// those that some triple reaches within its bounds and the constraints, solved there.
     fn nearest(&self, edit: &SurfaceEditContext, target: Point) -> Option<SurfaceNearest> {
         let (u, v) = edit.parameter;
         let triples = weight_triples(edit.surface, u, v).ok()?;
+        let points = edit.surface.control_points();
         let mut candidates: Vec<(f64, Point)> = triples
             .iter()
             .filter(|t| !t.poles.iter().any(|&pole| edit.fixed.is_fixed(pole)))
             .map(|t| {
                 let closest = closest_in_tetrahedron(&t.tetrahedron, target);
-                let centroid = scale(t.tetrahedron.iter().fold([0.0; 3], |a, &b| add(a, b)), 0.25);
-                let inside = add(closest, scale(sub(centroid, closest), NEAREST_PULL));
-                (distance(inside, target), inside)
+                let lambda = barycentric(&t.tetrahedron, closest).map(|l| l.max(NEAREST_PULL));
+                let mut numerator = scale(t.tetrahedron[0], t.rest_weight);
+                let mut denominator = t.rest_weight;
+                for k in 0..3 {
+                    let (lo, hi) = weight_bounds(t.old_weights[k]);
+                    let x =
+                        (lambda[k + 1] * t.rest_weight / (lambda[0] * t.basis[k])).clamp(lo, hi);
+                    numerator = add(numerator, scale(points[t.poles[k]], x * t.basis[k]));
+                    denominator += x * t.basis[k];
+                }
+                let reached = scale(numerator, 1.0 / denominator);
+                (distance(reached, target), reached)
             })
             .collect();
         candidates.sort_by(|a, b| a.0.total_cmp(&b.0));
