@@ -28,6 +28,7 @@ pub enum SurfaceMethod {
 /// `[S_u, S_v]` (order 1).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
 #[serde(untagged)]
+#[schema(example = json!([[1, 0, 0.5], [0, 1, 0]]))]
 pub enum SurfaceConstraintValue {
     /// Order 0: `[x, y, z]`.
     Point(Vec<f64>),
@@ -195,6 +196,7 @@ pub struct SurfaceExclusionBody {
 
 /// The nearest reachable point, when nothing reaches the target.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
+#[schema(example = json!({"point": [1.2, 1.1, 0.9], "distance": 0.4, "solutions": []}))]
 pub struct SurfaceNearestBody {
     /// The point.
     pub point: [f64; 3],
@@ -206,6 +208,10 @@ pub struct SurfaceNearestBody {
 
 /// Every solution, ranked by `max_deviation` across methods.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
+#[schema(example = json!({"reachable": true, "solutions": [{"method": "control_points",
+    "point": [1, 1, 0.8], "residual": 0.0, "affected_domain": [[0, 1], [0, 1]],
+    "max_deviation": 0.35, "conditioning": 1.0, "changed_control_points": [[1, 1]],
+    "displacement_norm": 0.8}], "excluded": []}))]
 pub struct SurfaceSolveResponse {
     /// Whether some solution reaches the target.
     pub reachable: bool,
@@ -220,6 +226,8 @@ pub struct SurfaceSolveResponse {
 
 /// A weight triple's region: the tetrahedron of its three poles and `s₀`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
+#[schema(example = json!({"poles": [[1, 1], [1, 2], [2, 1]],
+    "tetrahedron": [[1, 1, 0.1], [1, 1, 1], [1, 2, 0], [2, 1, 0]]}))]
 pub struct TetrahedronBody {
     /// The caller's `[i, j]` of the three poles.
     pub poles: [[usize; 2]; 3],
@@ -229,6 +237,7 @@ pub struct TetrahedronBody {
 
 /// What one method reaches.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
+#[schema(example = json!({"method": "control_points", "everywhere": true}))]
 pub struct SurfaceMethodRegionBody {
     /// The method.
     pub method: SurfaceMethod,
@@ -244,6 +253,8 @@ pub struct SurfaceMethodRegionBody {
 
 /// The regions of the requested methods.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
+#[schema(example = json!({"point": [1, 1, 0.25],
+    "methods": [{"method": "control_points", "everywhere": true}]}))]
 pub struct SurfaceRegionsResponse {
     /// `S(parameter)`.
     pub point: [f64; 3],
