@@ -149,7 +149,7 @@ pub struct SurfaceSolutionBody {
     /// `[[u0, u1], [v0, v1]]`: outside it the new surface equals the old one.
     pub affected_domain: [[f64; 2]; 2],
     /// The largest distance between the old and the new surface, certified by Bernstein
-    /// bounds per patch (never below the true maximum, within `1e-6` relative of it).
+    /// bounds per patch (never below the true maximum, its square within `1e-3` relative of the maximum's).
     pub max_deviation: f64,
     /// How well the solution is determined, in `(0, 1]`: 1 for the control-point move; for
     /// weights `6 V / (e₁ e₂ e₃)` of the tetrahedron's edges from `s₀`. Orders ties.

@@ -23,7 +23,9 @@
 //! the queue is empty the answer is `sqrt(M)`: never below the true maximum, and within the
 //! tolerance of a distance the surfaces really have. A search that runs out of its budget
 //! ([`MAX_CELLS`] halvings) answers the largest `max N / min D` left, still an upper bound.
-//! Gaps below `1e-13` of the nets' size are rounding and not refined.
+//! Gaps below `1e-13` of the nets' size are rounding and not refined. A rational cell is first
+//! bounded quickly by its degree-`(2p, 2q)` gaps ([`QuickCell`]) and squared only when that
+//! bound does not already settle it.
 
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
@@ -104,19 +106,25 @@ impl Poly {
     /// `C(m, i) C(n, j) b_ij`.
     fn times(&self, other: &Poly) -> Poly {
         let (m, n) = (self.m + other.m, self.n + other.n);
+        let scaled = |p: &Poly| -> Vec<f64> {
+            (0..=p.m)
+                .flat_map(|i| (0..=p.n).map(move |j| (i, j)))
+                .map(|(i, j)| p.c[i * (p.n + 1) + j] * BINOMIAL[p.m][i] * BINOMIAL[p.n][j])
+                .collect()
+        };
+        let (a, b) = (scaled(self), scaled(other));
         let mut c = vec![0.0; (m + 1) * (n + 1)];
         for i in 0..=self.m {
             for j in 0..=self.n {
-                let a = self.c[i * (self.n + 1) + j] * BINOMIAL[self.m][i] * BINOMIAL[self.n][j];
-                if a == 0.0 {
+                let x = a[i * (self.n + 1) + j];
+                if x == 0.0 {
                     continue;
                 }
                 for k in 0..=other.m {
-                    for l in 0..=other.n {
-                        let b = other.c[k * (other.n + 1) + l]
-                            * BINOMIAL[other.m][k]
-                            * BINOMIAL[other.n][l];
-                        c[(i + k) * (n + 1) + j + l] += a * b;
+                    let row = &b[k * (other.n + 1)..(k + 1) * (other.n + 1)];
+                    let out = &mut c[(i + k) * (n + 1) + j..(i + k) * (n + 1) + j + other.n + 1];
+                    for (o, y) in out.iter_mut().zip(row) {
+                        *o += x * y;
                     }
                 }
             }
@@ -170,6 +178,8 @@ struct Cell {
     numerator: Poly,
     denominator: Option<Poly>,
     depth: u32,
+    /// A rational cell not yet squared (then `numerator` is empty).
+    quick: Option<Box<QuickCell>>,
 }
 
 impl PartialEq for Cell {
@@ -207,6 +217,7 @@ impl Cell {
             numerator,
             denominator,
             depth,
+            quick: None,
         }
     }
 
@@ -233,6 +244,43 @@ impl Cell {
                 let d = d.corners();
                 (0..4).fold(0.0f64, |a, k| a.max(n[k] / d[k]))
             }
+        }
+    }
+}
+
+/// A rational cell before its squared form: the gaps `G_c = X_c,old W_new − X_c,new W_old`
+/// and `W = W_old W_new` (degrees `(2p, 2q)`), with the quick upper bound
+/// `Σ_c max_k G_c,k² / (min_k W_k)²` of the squared gap `Σ_c G_c² / W²` and its corner values.
+struct QuickCell {
+    gaps: Vec<Poly>,
+    weight: Poly,
+    upper: f64,
+    corner_value: f64,
+}
+
+impl QuickCell {
+    fn new(gaps: Vec<Poly>, weight: Poly) -> QuickCell {
+        let low = weight.min();
+        let top: f64 = gaps
+            .iter()
+            .map(|g| g.c.iter().fold(0.0f64, |m, x| m.max(x.abs())).powi(2))
+            .sum();
+        let upper = if low > 0.0 {
+            top / (low * low)
+        } else {
+            f64::INFINITY
+        };
+        let w = weight.corners();
+        let corners: Vec<[f64; 4]> = gaps.iter().map(Poly::corners).collect();
+        let corner_value = (0..4).fold(0.0f64, |m, k| {
+            let squared: f64 = corners.iter().map(|c| c[k] * c[k]).sum();
+            m.max(squared / (w[k] * w[k]))
+        });
+        QuickCell {
+            gaps,
+            weight,
+            upper,
+            corner_value,
         }
     }
 }
@@ -288,6 +336,7 @@ pub fn surface_max_deviation(old: &Surface, new: &Surface, rect: [(f64, f64); 2]
     let len = (p + 1) * (q + 1);
     let (mut net_old, mut net_new) = (vec![[0.0; 4]; len], vec![[0.0; 4]; len]);
     let mut queue = BinaryHeap::new();
+    let mut quick_cells = Vec::new();
     let mut best = 0.0f64;
     for u in us.windows(2) {
         for v in vs.windows(2) {
@@ -323,14 +372,18 @@ pub fn surface_max_deviation(old: &Surface, new: &Surface, rect: [(f64, f64); 2]
                     };
                     if rational {
                         let (w_old, w_new) = (lane(&net_old, 3), lane(&net_new, 3));
-                        let gaps = (0..3).map(|c| {
-                            let mut gap = lane(&net_old, c).times(&w_new);
-                            gap.add_assign(&lane(&net_new, c).times(&w_old), -1.0);
-                            gap
-                        });
-                        let numerator = sum_of_squares(gaps);
+                        let gaps: Vec<Poly> = (0..3)
+                            .map(|c| {
+                                let mut gap = lane(&net_old, c).times(&w_new);
+                                gap.add_assign(&lane(&net_new, c).times(&w_old), -1.0);
+                                gap
+                            })
+                            .collect();
                         let w = w_old.times(&w_new);
-                        Cell::new(numerator, Some(w.times(&w)), 0)
+                        let quick = QuickCell::new(gaps, w);
+                        best = best.max(quick.corner_value);
+                        quick_cells.push(quick);
+                        continue;
                     } else {
                         let gaps = (0..3).map(|c| {
                             let mut gap = lane(&net_old, c);
@@ -345,10 +398,33 @@ pub fn surface_max_deviation(old: &Surface, new: &Surface, rect: [(f64, f64); 2]
             queue.push(cell);
         }
     }
+    // Rational cells wait in their quick form; a cell gets its squared form only when it comes
+    // first in the queue and its quick bound does not settle it.
+    for quick in quick_cells {
+        queue.push(Cell {
+            upper: quick.upper,
+            numerator: Poly {
+                m: 0,
+                n: 0,
+                c: Vec::new(),
+            },
+            denominator: None,
+            depth: 0,
+            quick: Some(Box::new(quick)),
+        });
+    }
     let floor = (ZERO_GAP * surface_edit_size(old).max(surface_edit_size(new))).powi(2);
     let mut halvings = 0;
-    while let Some(cell) = queue.pop() {
+    while let Some(mut cell) = queue.pop() {
         let bound = best * (1.0 + SURFACE_DEVIATION_RELATIVE_TOLERANCE);
+        if let Some(quick) = cell.quick.take() {
+            if quick.upper > bound.max(floor) {
+                let numerator = sum_of_squares(quick.gaps.into_iter());
+                let denominator = quick.weight.times(&quick.weight);
+                queue.push(Cell::new(numerator, Some(denominator), 0));
+            }
+            continue;
+        }
         if cell.upper <= bound.max(floor) || cell.below(bound) {
             // Proven: the squared gap stays within `bound` on this cell.
             continue;

@@ -42,7 +42,7 @@ pub const MAX_ACTIVE_POLES: usize = 36;
 
 /// At most this many solutions are returned (those that change the weights least, by
 /// `max_t |ln(x_t / w_t)|`), each measured and ranked by the edit.
-pub const MAX_WEIGHT_SOLUTIONS: usize = 8;
+pub const MAX_WEIGHT_SOLUTIONS: usize = 4;
 
 /// A tetrahedron whose volume is below this fraction of the cube of its longest edge is flat:
 /// its three weights move the point in (nearly) a plane only, and the triple is left out.
