@@ -41,7 +41,7 @@ use crate::config::Config;
 use error::{FieldError, PROBLEM_JSON, Problem};
 use routes::{closest, curves, editor, files, ops, shape, toolkit};
 use routes::{from_points, length, reshape};
-use routes::{surface_closest, surface_mesh, surface_toolkit, surfaces};
+use routes::{surface_closest, surface_edit, surface_mesh, surface_toolkit, surfaces};
 pub use server::{Server, shutdown_signal};
 pub use state::{AppState, Readiness};
 
@@ -126,6 +126,8 @@ fn v1_routes() -> OpenApiRouter<AppState> {
         .routes(routes!(surface_toolkit::insert_knots))
         .routes(routes!(surface_toolkit::split))
         .routes(routes!(surface_mesh::tessellate))
+        .routes(routes!(surface_edit::solve))
+        .routes(routes!(surface_edit::regions))
 }
 
 /// Probe, metrics and document routes (always open).

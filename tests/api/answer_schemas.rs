@@ -499,6 +499,34 @@ fn more_cases() -> Vec<Case> {
             json!({"curve": flat_start(), "parameter": 0.1}),
             200,
         ),
+        // The surface edit with constraints that contradict each other: exclusions that
+        // name a constraint.
+        post(
+            "surface solve, contradictory constraints",
+            "/v1/surfaces/shape/solve",
+            json!({"surface": {"degree_u": 2, "degree_v": 2,
+                               "control_points": [[[0, 0, 0], [0, 1, 0], [0, 2, 0]],
+                                                  [[1, 0, 0], [1, 1, 1], [1, 2, 0]],
+                                                  [[2, 0, 0], [2, 1, 0], [2, 2, 0]]],
+                               "knots_u": [0, 0, 0, 1, 1, 1], "knots_v": [0, 0, 0, 1, 1, 1]},
+                   "parameter": [0.5, 0.5], "target": [1, 1, 0.8],
+                   "constraints": [{"parameter": [0.2, 0.2], "order": 0},
+                                   {"parameter": [0.2, 0.2], "order": 0, "value": [0, 0, 1]}]}),
+            200,
+        ),
+        // Weight triples through a fixed pole: exclusions that name it.
+        post(
+            "surface solve, weights with a fixed pole",
+            "/v1/surfaces/shape/solve",
+            json!({"surface": {"degree_u": 2, "degree_v": 2,
+                               "control_points": [[[0, 0, 0], [0, 1, 0], [0, 2, 0]],
+                                                  [[1, 0, 0], [1, 1, 1], [1, 2, 0]],
+                                                  [[2, 0, 0], [2, 1, 0], [2, 2, 0]]],
+                               "knots_u": [0, 0, 0, 1, 1, 1], "knots_v": [0, 0, 0, 1, 1, 1]},
+                   "parameter": [0.5, 0.5], "target": [1.02, 1.01, 0.3],
+                   "methods": ["weights"], "fixed_control_points": [[1, 1]]}),
+            200,
+        ),
     ]
 }
 

@@ -154,6 +154,34 @@ fn check_sensible(path: &str, request: &Value, body: &Value) {
             let cuts = request["parameters"].as_array().unwrap().len();
             assert_eq!(body["surfaces"].as_array().unwrap().len(), cuts + 1);
         }
+        "/v1/surfaces/shape/solve" => {
+            if request["nearest"] == true {
+                // Unreachable by the weights alone: the nearest point they reach instead.
+                assert_eq!(body["reachable"], false);
+                assert!(!body["nearest"]["solutions"].as_array().unwrap().is_empty());
+                return;
+            }
+            assert_eq!(body["reachable"], true, "examples show reachable targets");
+            let solutions = body["solutions"].as_array().unwrap();
+            assert!(!solutions.is_empty());
+            let deviations: Vec<f64> = solutions
+                .iter()
+                .map(|s| s["max_deviation"].as_f64().unwrap())
+                .collect();
+            assert!(deviations.windows(2).all(|d| d[0] <= d[1]), "ranked");
+            let target = numbers(&request["target"]);
+            for solution in solutions {
+                let point = numbers(&solution["point"]);
+                let gap: f64 = (0..3).map(|c| (point[c] - target[c]).powi(2)).sum();
+                assert!(gap.sqrt() < 1e-9, "{solution}");
+            }
+        }
+        "/v1/surfaces/shape/regions" => {
+            let methods = body["methods"].as_array().unwrap();
+            assert_eq!(methods.len(), request["methods"].as_array().unwrap().len());
+            assert!(methods.iter().any(|m| m["everywhere"] == true
+                || m["tetrahedra"].as_array().is_some_and(|t| !t.is_empty())));
+        }
         "/v1/curves/bezier" => {
             assert!(!body["segments"].as_array().unwrap().is_empty());
             assert!(body["svg_path"].as_str().unwrap().starts_with('M'));
@@ -247,7 +275,7 @@ async fn every_example_request_gets_a_sensible_200() {
     }
     assert_eq!(
         endpoints.len(),
-        10 + 6 + 6,
+        10 + 6 + 6 + 2,
         "one example or more per endpoint: {endpoints:?}"
     );
 }

@@ -29,6 +29,7 @@ mod reference;
 mod regions_constraints;
 mod shape;
 mod shutdown;
+mod surface_edit;
 mod surface_errors;
 mod surface_files;
 mod surface_mesh;

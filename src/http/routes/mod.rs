@@ -13,6 +13,7 @@ pub mod length;
 pub mod reshape;
 // Surfaces (fourth release).
 pub mod surface_closest;
+pub mod surface_edit;
 pub mod surface_mesh;
 pub mod surface_toolkit;
 pub mod surfaces;

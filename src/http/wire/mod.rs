@@ -18,6 +18,8 @@ pub mod reshape;
 pub mod toolkit_parse;
 // Surfaces (fourth release).
 pub mod surface_closest;
+pub mod surface_edit;
+pub mod surface_edit_parse;
 pub mod surface_mesh;
 pub mod surface_toolkit;
 pub mod surfaces;
