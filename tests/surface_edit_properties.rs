@@ -226,6 +226,11 @@ fn check_solution(
                 .expect("a solid tetrahedron");
             prop_assert!(lambda.iter().all(|&l| l > -1e-9) && lambda.sum() < 1.0 + 1e-9);
         }
+        SurfaceSolutionDetail::Knots { .. } => {
+            // Only knots changed.
+            prop_assert_eq!(&old.poles, &new.poles);
+            prop_assert_eq!(&old.weights, &new.weights);
+        }
         SurfaceSolutionDetail::ControlPoints { .. } => {
             for (i, row) in old.poles.iter().enumerate() {
                 for j in 0..row.len() {
@@ -439,40 +444,66 @@ proptest! {
     }
 }
 
-/// The knot method is not offered yet: asked for, it is answered with an exclusion (no stub
-/// solution).
+/// The knot method through the edit: a target planted by moving one interior `u`-knot of a
+/// planar bicubic (every iso-curve lies in `z = 0`, so the pairs reach targets there) is
+/// reached by knot solutions, each passing every check of the brute-force evaluator (the
+/// target, the surface unchanged outside its rectangle, the deviation bound against the
+/// sampled distance, poles and weights untouched). The domain is kept, so that the old and
+/// new surfaces compare on one rectangle.
 #[test]
-fn the_knot_method_is_excluded_until_it_exists() {
+fn the_knot_method_reaches_a_planted_target() {
+    let clamped = vec![0.0, 0.0, 0.0, 0.0, 0.3, 0.55, 0.8, 1.0, 1.0, 1.0, 1.0];
     let plain = Plain {
-        p: 2,
-        q: 2,
-        knots_u: vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
-        knots_v: vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
-        poles: (0..3)
+        p: 3,
+        q: 3,
+        knots_u: clamped.clone(),
+        knots_v: clamped,
+        poles: (0..7)
             .map(|i| {
-                (0..3)
-                    .map(|j| [i as f64, j as f64, ((i * j) % 2) as f64])
+                (0..7)
+                    .map(|j| {
+                        let (x, y) = (i as f64, j as f64);
+                        [x + 0.2 * (0.9 * y).sin(), y + 0.3 * (0.7 * x).cos(), 0.0]
+                    })
                     .collect()
             })
             .collect(),
         weights: None,
     };
+    let picked = (0.62, 0.45);
+    let mut planted = plain.clone();
+    planted.knots_u[5] = 0.5;
+    let target = planted.point(picked.0, picked.1);
+    assert!(distance(target, plain.point(picked.0, picked.1)) > 1e-3);
     let surface = plain.surface();
     let constraints = SurfaceConstraints::none();
     let fixed = FixedNet::none(&surface);
     let outcome = surface_edit(&SurfaceEditRequest {
         surface: &surface,
-        parameter: (0.5, 0.5),
-        target: [1.0, 1.0, 1.0],
+        parameter: picked,
+        target,
         methods: &[SurfaceMethodKind::Knots],
         constraints: &constraints,
         fixed: &fixed,
-        options: SurfaceEditOptions::default(),
+        options: SurfaceEditOptions {
+            nearest: false,
+            keep_domain: true,
+        },
     });
-    assert!(outcome.solutions.is_empty());
-    assert_eq!(outcome.excluded.len(), 1);
-    assert_eq!(
-        outcome.excluded[0].reason,
-        SurfaceExclusionReason::NotAvailable
-    );
+    assert!(!outcome.solutions.is_empty(), "{:?}", outcome.excluded);
+    for solution in &outcome.solutions {
+        assert_eq!(solution.detail.method(), SurfaceMethodKind::Knots);
+        check_solution(&plain, picked, target, &[], &[], solution).unwrap();
+    }
+    // The planted single knot is among the solutions (a pair holding u_5 whose other knot
+    // keeps its value).
+    assert!(outcome.solutions.iter().any(|s| {
+        let new = Plain::of(&s.surface);
+        (new.knots_u[5] - 0.5).abs() < 1e-7
+            && new
+                .knots_u
+                .iter()
+                .zip(&planted.knots_u)
+                .all(|(a, b)| (a - b).abs() < 1e-7)
+    }));
 }

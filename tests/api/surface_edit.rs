@@ -150,19 +150,26 @@ async fn the_control_point_move_is_the_closed_form() {
 #[tokio::test]
 async fn the_answer_says_what_it_left_out() {
     let app = spawn_app().await;
-    // The knot method is not offered yet: an exclusion, not a 4xx.
+    // The knot method beside the control points: its solutions name their family, region
+    // and new knots; nothing is excluded as unavailable.
     let mut knots = request();
     knots["methods"] = json!(["knots", "control_points"]);
     let (status, answer) = app.post_json("/v1/surfaces/shape/solve", &knots).await;
     assert_eq!(status, 200, "{answer}");
-    assert_eq!(answer["excluded"][0]["method"], "knots");
     assert!(
-        answer["excluded"][0]["reason"]
-            .as_str()
+        answer["excluded"]
+            .as_array()
             .unwrap()
-            .contains("not available")
+            .iter()
+            .all(|e| !e["reason"].as_str().unwrap().contains("not available")),
+        "{answer}"
     );
-    assert_eq!(answer["solutions"][0]["method"], "control_points");
+    let solutions = answer["solutions"].as_array().unwrap();
+    assert!(solutions.iter().any(|s| s["method"] == "control_points"));
+    for solution in solutions.iter().filter(|s| s["method"] == "knots") {
+        assert!(solution["family"].is_string() && solution["region"].is_string());
+        assert!(solution["knots_u"].is_array() || solution["knots_v"].is_array());
+    }
 
     // Contradictory constraints: no move, one exclusion per method.
     let mut clash = request();
@@ -225,8 +232,14 @@ async fn regions_list_each_methods_reach() {
     let (status, answer) = app.post_json("/v1/surfaces/shape/regions", &body).await;
     assert_eq!(status, 200, "{answer}");
     let methods = answer["methods"].as_array().unwrap();
-    assert_eq!(methods[0]["everywhere"], true);
-    let tetrahedra = methods[1]["tetrahedra"].as_array().unwrap();
+    let method = |name: &str| {
+        methods
+            .iter()
+            .find(|m| m["method"] == name)
+            .unwrap_or_else(|| panic!("no {name} in {answer}"))
+    };
+    assert_eq!(method("control_points")["everywhere"], true);
+    let tetrahedra = method("weights")["tetrahedra"].as_array().unwrap();
     assert!(!tetrahedra.is_empty());
     // 9 poles act; the fixed [1, 1] is in none of the triples.
     assert!(tetrahedra.len() <= 56);
@@ -235,11 +248,14 @@ async fn regions_list_each_methods_reach() {
             .iter()
             .all(|t| !t["poles"].as_array().unwrap().contains(&json!([1, 1])))
     );
-    assert_eq!(methods[2]["everywhere"], false);
-    assert!(
-        methods[2]["reason"]
-            .as_str()
-            .unwrap()
-            .contains("not available")
-    );
+    // The knot families' planar regions (the mixed moves reach solids, not drawn).
+    let knots = method("knots");
+    assert_eq!(knots["everywhere"], false);
+    for region in knots["knot_regions"].as_array().unwrap() {
+        assert!(region["family"].as_str().unwrap().starts_with("iso_"));
+        for ring in region["rings"].as_array().unwrap() {
+            let ring = ring.as_array().unwrap();
+            assert!(ring.len() >= 4 && ring[0] == ring[ring.len() - 1]);
+        }
+    }
 }

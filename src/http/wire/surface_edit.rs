@@ -173,6 +173,47 @@ pub struct SurfaceSolutionBody {
     /// rational).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub weights: Option<Vec<Vec<f64>>>,
+    /// Knots: the family (`iso_u_envelope`, `iso_u_direct`, `iso_u_triples`, the same in `v`,
+    /// or `mixed`: knots in both directions).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub family: Option<String>,
+    /// Knots: the knot set, named for people.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub region: Option<String>,
+    /// Knots: the new `u`-knots in the caller's convention, when they changed.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub knots_u: Option<Vec<f64>>,
+    /// Knots: the new `v`-knots in the caller's convention, when they changed.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub knots_v: Option<Vec<f64>>,
+    /// Knots: the multiplicities of `knots_u`, when the surface was sent with them.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub multiplicities_u: Option<Vec<usize>>,
+    /// Knots: the multiplicities of `knots_v`, when the surface was sent with them.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub multiplicities_v: Option<Vec<usize>>,
+    /// Knots: indices (caller's convention; the full vector when sent with multiplicities)
+    /// of the changed `u`-knots, ascending.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub changed_knots_u: Option<Vec<usize>>,
+    /// Knots: the same for `v`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub changed_knots_v: Option<Vec<usize>>,
+}
+
+/// One knot family's region: a polygon in the plane of the control points acting.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
+#[schema(example = json!({"family": "iso_u_envelope", "region": "u envelope right: u_7 := ũ; u_5, u_9 (Omega5)",
+    "rings": [[[1.0, 2.0, 0.5], [1.5, 2.0, 0.5], [1.2, 2.4, 0.6], [1.0, 2.0, 0.5]]], "folded": false}))]
+pub struct SurfaceKnotRegionBody {
+    /// The family (`iso_u_envelope`, …).
+    pub family: String,
+    /// The knot set, named for people.
+    pub region: String,
+    /// Closed rings (first vertex repeated last): each outer ring, then its holes.
+    pub rings: Vec<Vec<[f64; 3]>>,
+    /// Whether the set's map folds (the outline then follows fold curves too).
+    pub folded: bool,
 }
 
 /// Solutions a method dropped, or why it has none.
@@ -246,6 +287,9 @@ pub struct SurfaceMethodRegionBody {
     /// The weight triples' tetrahedra (the weight bounds cut them further near their faces).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tetrahedra: Option<Vec<TetrahedronBody>>,
+    /// The knot families' planar regions (the mixed moves reach solids and are not drawn).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub knot_regions: Option<Vec<SurfaceKnotRegionBody>>,
     /// Why the method reaches nothing, when it does not.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub reason: Option<String>,

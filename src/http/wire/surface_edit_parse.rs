@@ -5,8 +5,8 @@
 use crate::http::error::FieldError;
 use crate::http::pointer::JsonPointer;
 use crate::http::wire::surface_edit::{
-    SurfaceConstraintBody, SurfaceConstraintValue, SurfaceExclusionBody, SurfaceMethod,
-    SurfaceMethodRegionBody, SurfaceSolutionBody, TetrahedronBody,
+    SurfaceConstraintBody, SurfaceConstraintValue, SurfaceExclusionBody, SurfaceKnotRegionBody,
+    SurfaceMethod, SurfaceMethodRegionBody, SurfaceSolutionBody, TetrahedronBody,
 };
 use crate::spline::Point;
 use crate::surface::edit::{
@@ -14,7 +14,7 @@ use crate::surface::edit::{
     SurfaceExclusionReason, SurfaceMethodKind, SurfaceReachable, SurfaceSolution,
     SurfaceSolutionDetail,
 };
-use crate::surface::{Surface, SurfaceLimits};
+use crate::surface::{Direction, Surface, SurfaceLimits};
 
 impl From<SurfaceMethodKind> for SurfaceMethod {
     fn from(kind: SurfaceMethodKind) -> Self {
@@ -238,8 +238,49 @@ pub fn solution_body(solution: &SurfaceSolution) -> SurfaceSolutionBody {
         changed_weights: None,
         tetrahedron: None,
         weights: None,
+        family: None,
+        region: None,
+        knots_u: None,
+        knots_v: None,
+        multiplicities_u: None,
+        multiplicities_v: None,
+        changed_knots_u: None,
+        changed_knots_v: None,
     };
     match &solution.detail {
+        SurfaceSolutionDetail::Knots {
+            family,
+            region,
+            changed_knots_u,
+            changed_knots_v,
+            ..
+        } => {
+            body.family = Some((*family).to_string());
+            body.region = Some(region.clone());
+            let caller_indices = |direction: Direction, changed: &[usize]| {
+                let axis = solution.surface.axis(direction);
+                changed
+                    .iter()
+                    .map(|&i| {
+                        axis.convention()
+                            .caller_index(i, axis.knots().len())
+                            .unwrap_or(i)
+                    })
+                    .collect::<Vec<usize>>()
+            };
+            if !changed_knots_u.is_empty() {
+                let knots = solution.surface.caller_knots(Direction::U);
+                body.knots_u = Some(knots.knots);
+                body.multiplicities_u = knots.multiplicities;
+                body.changed_knots_u = Some(caller_indices(Direction::U, changed_knots_u));
+            }
+            if !changed_knots_v.is_empty() {
+                let knots = solution.surface.caller_knots(Direction::V);
+                body.knots_v = Some(knots.knots);
+                body.multiplicities_v = knots.multiplicities;
+                body.changed_knots_v = Some(caller_indices(Direction::V, changed_knots_v));
+            }
+        }
         SurfaceSolutionDetail::ControlPoints {
             changed_control_points,
             displacement_norm,
@@ -274,6 +315,8 @@ pub fn solution_is_finite(body: &SurfaceSolutionBody) -> bool {
             .flatten()
             .all(finite)
         && body.weights.iter().flatten().flatten().all(finite)
+        && body.knots_u.iter().flatten().all(finite)
+        && body.knots_v.iter().flatten().all(finite)
         && body.tetrahedron.iter().flatten().flatten().all(finite)
 }
 
@@ -300,6 +343,7 @@ pub fn region_body(
         method: kind.into(),
         everywhere: false,
         tetrahedra: None,
+        knot_regions: None,
         reason: None,
     };
     match reachable {
@@ -311,6 +355,31 @@ pub fn region_body(
                     .map(|region| TetrahedronBody {
                         poles: region.poles,
                         tetrahedron: region.tetrahedron.map(wire),
+                    })
+                    .collect(),
+            );
+        }
+        SurfaceReachable::KnotRegions(regions) => {
+            body.knot_regions = Some(
+                regions
+                    .iter()
+                    .filter(|region| {
+                        region
+                            .rings
+                            .iter()
+                            .flatten()
+                            .flatten()
+                            .all(|x| x.is_finite())
+                    })
+                    .map(|region| SurfaceKnotRegionBody {
+                        family: region.family.name().to_string(),
+                        region: region.region.clone(),
+                        rings: region
+                            .rings
+                            .iter()
+                            .map(|ring| ring.iter().map(|&p| wire(p)).collect())
+                            .collect(),
+                        folded: region.folded,
                     })
                     .collect(),
             );

@@ -10,13 +10,14 @@ use std::fmt;
 
 use super::constraints::{FixedNet, SurfaceConstraints};
 use super::deviation::surface_max_deviation;
+use super::knots::SurfaceKnotRegion;
 use crate::spline::vector::Point;
 use crate::surface::Surface;
 
 /// The ways to move a surface point.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum SurfaceMethodKind {
-    /// Knots in `u`, `v` or both (not yet registered: see [`SURFACE_METHODS`]).
+    /// Knots in `u`, `v` or both ([`super::knots`]).
     Knots,
     /// The least-norm move of the free control points.
     ControlPoints,
@@ -47,10 +48,11 @@ impl SurfaceMethodKind {
     }
 }
 
-/// Every registered method, in the order their solutions are listed before ranking. The
-/// knot method is built separately and joins this list when it is merged; until then a
-/// request for it is answered with an exclusion ([`SurfaceExclusionReason::NotAvailable`]).
-pub static SURFACE_METHODS: [&dyn SurfaceEditMethod; 2] = [
+/// Every registered method, in the order their solutions are listed before ranking (a kind
+/// without an implementation would be answered with an exclusion,
+/// [`SurfaceExclusionReason::NotAvailable`]).
+pub static SURFACE_METHODS: [&dyn SurfaceEditMethod; 3] = [
+    &super::knot_method::KnotsMethod,
     &super::control_points::ControlPointsMethod,
     &super::weights::WeightsMethod,
 ];
@@ -73,6 +75,20 @@ pub struct SurfaceEditContext<'a> {
 /// How a solution changes the surface, per method.
 #[derive(Debug, Clone, PartialEq)]
 pub enum SurfaceSolutionDetail {
+    /// New knots in `u`, `v` or both.
+    Knots {
+        /// The family's wire name (`iso_u_envelope` … `mixed`).
+        family: &'static str,
+        /// The knot set, named for people.
+        region: String,
+        /// Full-vector indices of the changed `u`-knots, ascending.
+        changed_knots_u: Vec<usize>,
+        /// Full-vector indices of the changed `v`-knots, ascending.
+        changed_knots_v: Vec<usize>,
+        /// The `u`- and `v`-ranges whose strips change (a mixed move changes a cross of two
+        /// strips; `affected_domain` is their bounding rectangle).
+        changed_ranges: [Option<(f64, f64)>; 2],
+    },
     /// New control points.
     ControlPoints {
         /// The caller's `[i, j]` of the poles that moved, ascending.
@@ -95,6 +111,7 @@ impl SurfaceSolutionDetail {
     /// The method.
     pub fn method(&self) -> SurfaceMethodKind {
         match self {
+            SurfaceSolutionDetail::Knots { .. } => SurfaceMethodKind::Knots,
             SurfaceSolutionDetail::ControlPoints { .. } => SurfaceMethodKind::ControlPoints,
             SurfaceSolutionDetail::Weights { .. } => SurfaceMethodKind::Weights,
         }
@@ -244,6 +261,9 @@ pub enum SurfaceReachable {
     Everywhere,
     /// The weight triples' tetrahedra.
     Tetrahedra(Vec<TetrahedronRegion>),
+    /// The one-direction knot families' planar regions (the mixed moves reach solids, not
+    /// drawn).
+    KnotRegions(Vec<SurfaceKnotRegion>),
     /// Nothing (every pole fixed, or the method refused), with the reason.
     Nothing(SurfaceExclusionReason),
 }

@@ -10,6 +10,7 @@ mod basis;
 mod constraints;
 mod control_points;
 mod deviation;
+mod knot_method;
 pub mod knots;
 mod method;
 mod solve;
@@ -26,6 +27,7 @@ pub use control_points::{
     surface_control_point_move,
 };
 pub use deviation::{MAX_CELLS, SURFACE_DEVIATION_RELATIVE_TOLERANCE, surface_max_deviation};
+pub use knot_method::KnotsMethod;
 pub use method::{
     SURFACE_METHODS, SurfaceEditContext, SurfaceEditMethod, SurfaceExclusion,
     SurfaceExclusionReason, SurfaceMethodKind, SurfaceMethodSolutions, SurfaceNearest,

@@ -92,7 +92,9 @@ pub(crate) fn direction_problems(
                 None | Some(crate::shape::family::FamilyNotApplicable::Collinear)
             );
             let local = problem.problem.clone().filter(|_| usable)?;
-            let pole_start = problem.moved_knot.map_or(problem.span - p, |i| i - p);
+            // A set whose first acting pole would lie before the net's first (an end span
+            // with too few knots before it) has no mixed move.
+            let pole_start = problem.moved_knot.unwrap_or(problem.span).checked_sub(p)?;
             Some(Side1 {
                 problem,
                 local,
