@@ -2,6 +2,10 @@
 //! where they exist (`q = 2`: the paper's six; the outermost pair of any degree: a 2 × 2
 //! linear system), certified subdivision ([`super::isolate`]) for the rest, each root then
 //! polished by Newton's method on de Boor itself and checked against the admissible box.
+//!
+//! One file (about 680 lines) over 600 on purpose: the solvers of one unknown set are chosen
+//! by [`solver_for`] and share the search box, the polish and the admissibility check; split
+//! by solver, each part would only call back into the others.
 
 use super::isolate::{IsolationOptions, ZERO_MARGIN, invert, isolate};
 use super::local::{LocalProblem, SearchBox};
