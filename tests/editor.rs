@@ -22,6 +22,7 @@ mod editor {
     pub mod precision;
     pub mod regions;
     pub mod resilience;
+    pub mod space;
     pub mod static_files;
     pub mod steps;
     pub mod third_release;

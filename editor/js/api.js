@@ -212,3 +212,40 @@ export function solve(curve, parameter, target, { methods, family = null, svgPat
   if (svgPaths) body.svg_paths = true;
   return post("/v1/shape/solve", body);
 }
+
+/** POST /v1/curves/export with curves and surfaces (STEP), as text. */
+export function exportStep(curves, surfaces) {
+  return post("/v1/curves/export", { format: "step", curves, surfaces }, { text: true });
+}
+
+/** POST /v1/surfaces/tessellate: a mesh within `tolerance` of the surface (JSON). */
+export function tessellate(surface, tolerance) {
+  return post("/v1/surfaces/tessellate", { surface, tolerance });
+}
+
+/** POST /v1/surfaces/closest-point for one query point. */
+export function surfaceClosestPoint(surface, point) {
+  return post("/v1/surfaces/closest-point", { surface, points: [point] });
+}
+
+/** POST /v1/surfaces/evaluate at `parameters` with unit normals. */
+export function surfaceNormals(surface, parameters) {
+  return post("/v1/surfaces/evaluate", { surface, parameters, normals: true });
+}
+
+/** POST /v1/curves/evaluate at `parameters` with derivatives to order 2. */
+export function curveFrames(curve, parameters) {
+  return post("/v1/curves/evaluate", { curve, parameters, derivatives: 2 });
+}
+
+/** POST /v1/surfaces/shape/solve: moves S(parameter) to `target`; the nearest reachable
+ * target is asked for only without the control points (which reach every target). */
+export function surfaceSolve(surface, parameter, target, methods) {
+  const nearest = !methods.includes("control_points");
+  return post("/v1/surfaces/shape/solve", { surface, parameter, target, methods, keep_domain: true, nearest });
+}
+
+/** POST /v1/surfaces/shape/regions: what each method reaches from S(parameter). */
+export function surfaceRegions(surface, parameter, methods, budget = 0) {
+  return post("/v1/surfaces/shape/regions", { surface, parameter, methods, keep_domain: true }, { budget });
+}

@@ -1,7 +1,9 @@
 // The editor's start: finds the page's elements, builds the panel, sets up the one state
 // (store.js) drawn by view.js, strip.js and panel.js, and binds the interaction to the
 // actions of picking.js, dragging.js, precision.js, committing.js, files.js and the view's
-// frame (viewport.js). Tests read the drag timings from window.editorTimings.
+// frame (viewport.js); sets up the 3D view (space/main.js) beside it, which surfaces and
+// space curves open in, and routes the shared buttons (undo, redo, fit) to the view shown.
+// Tests read the drag timings from window.editorTimings (2D) and window.knotshapeSpace (3D).
 
 import * as api from "./api.js";
 import * as committing from "./committing.js";
@@ -21,7 +23,8 @@ import { buildPanel, drawPanel } from "./panel.js";
 import { drawScene } from "./view.js";
 import { drawStrip } from "./strip.js";
 import { setAttribute } from "./render.js";
-import { SAMPLE_CUBIC, SINGLE_BEZIER } from "./sample.js";
+import { SAMPLE_CUBIC, SINGLE_BEZIER, sampleSurface } from "./sample.js";
+import { setupSpace } from "./space/main.js";
 
 const IDS = {
   scene: "scene", canvas: "canvas", strip: "knot-strip", solutions: "solutions", solutionsNote: "solutions-note",
@@ -36,6 +39,39 @@ const IDS = {
 };
 
 const elements = Object.fromEntries(Object.entries(IDS).map(([name, id]) => [name, document.getElementById(id)]));
+
+/** The 3D view's elements. */
+const SPACE_IDS = {
+  canvas: "space", frame: "space-frame", objects: "space-objects", methods: "space-methods", view: "space-view",
+  solutions: "space-solutions", message: "space-message", error: "space-error",
+};
+const spaceElements = Object.fromEntries(Object.entries(SPACE_IDS).map(([name, id]) => [name, document.getElementById(id)]));
+let space = null;
+
+/** Switches between the 2D drawing and the 3D view. From 2D: the 3D view shows what it
+ * had, or else the 2D editor's curve in space. From 3D with a curve selected that was edited
+ * in 3D: that curve opens in the 2D editor (edited in its x–y projection, its z kept). */
+function toggleMode() {
+  if (space.active()) {
+    const item = space.editor.selectedItem();
+    space.hide();
+    document.getElementById("view-mode").textContent = "3D view";
+    if (item?.kind === "curve" && item.edited) committing.loadCurve(files.editable(item.shape), `${item.name} in 2D (its x–y projection; z is kept).`);
+    return;
+  }
+  document.getElementById("view-mode").textContent = "2D view";
+  if (space.editor.items.length > 0) {
+    space.show();
+    return;
+  }
+  space.open([{ kind: "curve", shape: model.currentCurve(store.get()), name: "the curve" }], "The curve in 3D: orbit to see it from any side.");
+}
+
+/** Opens `objects` (`{ kind, shape, name }`) in the 3D view. */
+function openInSpace(objects, message) {
+  document.getElementById("view-mode").textContent = "2D view";
+  return space.open(objects, message);
+}
 
 /** The knot strip's width, kept by a ResizeObserver: reading it while drawing would make
  * the browser lay the page out in the middle of every drag move. */
@@ -107,6 +143,15 @@ function choose(index) {
 }
 
 function start() {
+  document.body.dataset.mode = "2d";
+  space = setupSpace(spaceElements);
+  files.setSpaceOpener(openInSpace);
+  document.getElementById("view-mode").addEventListener("click", toggleMode);
+  document.getElementById("surface-sample").addEventListener("click", () =>
+    openInSpace([{ kind: "surface", shape: sampleSurface(6), name: "sample surface (bicubic, 6 × 6 poles)" }],
+      "The sample surface: press on it and drag; drag the background to orbit."));
+  document.getElementById("space-export-step").addEventListener("click", () => files.exportSpaceStep(space.editor.exportable(), elements));
+  document.getElementById("space-export").addEventListener("click", () => files.exportSpaceSelected(space.editor.selectedItem(), elements));
   buildPanel(elements);
   stripWidth = Math.max(elements.strip.clientWidth, 100);
   new ResizeObserver(() => {
@@ -139,13 +184,13 @@ function start() {
       const { width, height } = store.get().view.size;
       reframe((frame) => viewport.zoomAbout(frame, [width / 2, height / 2], factor));
     },
-    fit: fitView,
+    fit: () => (space.active() ? space.fit() : fitView()),
     resize,
     nudge: precision.nudge,
     moveToTyped: precision.moveToTyped,
     choose,
-    undo: () => committing.historyStep(model.undo),
-    redo: () => committing.historyStep(model.redo),
+    undo: () => (space.active() ? space.undo() : committing.historyStep(model.undo)),
+    redo: () => (space.active() ? space.redo() : committing.historyStep(model.redo)),
     setTool: (tool) => {
       document.body.dataset.tool = tool;
       store.set({ ...store.get(), tool });

@@ -80,6 +80,8 @@ impl Browser {
                     "--headless",
                     "--no-sandbox",
                     "--disable-gpu",
+                    // WebGL by SwiftShader (the 3D view): software rendering, trusted local pages.
+                    "--enable-unsafe-swiftshader",
                     "--disable-quic",
                     "--no-first-run",
                     "--disable-background-networking",

@@ -233,6 +233,7 @@ async fn open_file(page: &Page<'_>, name: &str, text: &str) {
     )
     .await;
     page.settle().await;
+    super::steps::leave_3d(page).await;
 }
 
 #[tokio::test]

@@ -1,5 +1,5 @@
 //! `GET /` and `GET /editor/...`: the page and every file it refers to (found by following
-//! its `src`/`href` attributes and the modules' `import` lines) are served with their content
+//! its `src`/`href` attributes and the modules' `import` lines, three.js's included) are served with their content
 //! types, the strict Content-Security-Policy, `nosniff`, and revalidation by `ETag`; no API
 //! key needed. `/favicon.ico` is served too.
 
@@ -17,6 +17,8 @@ fn content_type(path: &str) -> &'static str {
         "text/javascript; charset=utf-8"
     } else if path.ends_with(".svg") || path.ends_with(".ico") {
         "image/svg+xml"
+    } else if path.ends_with("/LICENSE") || path.ends_with("/VERSION") {
+        "text/plain; charset=utf-8"
     } else {
         panic!("unexpected file {path}")
     }
@@ -35,13 +37,47 @@ fn references(path: &str, body: &str) -> Vec<String> {
         }
     }
     for line in body.lines() {
-        if let Some(import) = line.strip_prefix("import ") {
-            let module = import.split('"').nth(1).unwrap();
-            let module = module.strip_prefix("./").expect("relative imports");
-            found.push(format!("{directory}{module}"));
+        // `import … from "./m.js";`, `} from '../m.js';` (a multi-line import, three.js's
+        // quotes), `import "./m.js";`.
+        let line = line.trim_start();
+        if !(line.starts_with("import ") || line.starts_with("} from ")) {
+            continue;
         }
+        let Some(module) = quoted_module(line) else {
+            continue;
+        };
+        found.push(resolve(directory, module));
     }
     found
+}
+
+/// The module named in quotes (either kind) after `from`, or after `import` alone.
+fn quoted_module(line: &str) -> Option<&str> {
+    let rest = line.rsplit_once(" from ").map_or(line, |(_, rest)| rest);
+    let quote = rest.find(['"', '\''])?;
+    let mark = &rest[quote..=quote];
+    let inner = &rest[quote + 1..];
+    let module = &inner[..inner.find(mark)?];
+    assert!(
+        module.starts_with("./") || module.starts_with("../"),
+        "relative imports only: {module}"
+    );
+    Some(module)
+}
+
+/// `module` (relative, with `./` and `../` steps) from the site directory `directory`.
+fn resolve(directory: &str, module: &str) -> String {
+    let mut parts: Vec<&str> = directory.trim_end_matches('/').split('/').collect();
+    for step in module.split('/') {
+        match step {
+            "." => {}
+            ".." => {
+                parts.pop();
+            }
+            name => parts.push(name),
+        }
+    }
+    parts.join("/")
 }
 
 #[tokio::test]
@@ -91,6 +127,15 @@ async fn the_files_are_served_with_strict_headers_even_with_an_api_key() {
     // The page, its style, its icon and its modules.
     assert!(seen.len() > 20, "{seen:?}");
     assert!(seen.contains("/editor/js/main.js") && seen.contains("/editor/favicon.svg"));
+    // The 3D view's modules and the vendored three.js they import.
+    for module in [
+        "/editor/js/space/main.js",
+        "/editor/vendor/three/three.module.js",
+        "/editor/vendor/three/three.core.js",
+        "/editor/vendor/three/OrbitControls.js",
+    ] {
+        assert!(seen.contains(module), "{module} not reached: {seen:?}");
+    }
     assert_eq!(
         app.get("/editor/js/missing.js").await.status().as_u16(),
         404

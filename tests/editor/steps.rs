@@ -330,4 +330,19 @@ pub async fn paste(page: &Page<'_>, curve: &Value) {
     .await;
     page.click_id("load").await;
     page.settle().await;
+    leave_3d(page).await;
+}
+
+/// Back to the 2D editor when a space curve or a file opened the 3D view too (these tests
+/// edit curves in 2D; tests/editor/space.rs edits them in 3D).
+pub async fn leave_3d(page: &Page<'_>) {
+    page.wait_until(
+        "the 3D view has its objects",
+        "document.body.dataset.mode !== '3d' || (window.knotshapeSpace && !window.knotshapeSpace.busy())",
+    )
+    .await;
+    if page.data("mode").await == "3d" {
+        page.click_id("view-mode").await;
+        page.settle().await;
+    }
 }

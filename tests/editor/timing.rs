@@ -65,7 +65,7 @@ async fn main_thread_work(browser: &Browser) -> Vec<(&'static str, f64)> {
 
 /// Seconds the server spent on `route` so far and how many requests: the latency
 /// histogram's sum and count (from receiving a request to sending its response head).
-async fn server_time(app: &TestApp, route: &str) -> (f64, f64) {
+pub async fn server_time(app: &TestApp, route: &str) -> (f64, f64) {
     let text = app.get("/metrics").await.text().await.unwrap();
     let read = |suffix: &str| {
         text.lines()

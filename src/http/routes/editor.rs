@@ -1,5 +1,5 @@
 //! `GET /` and `GET /editor/...`: the editor, a page of static files compiled into the binary
-//! (`editor/` at the repository root), and `GET /favicon.ico` (its icon, which browsers ask
+//! (`editor/` at the repository root, with three.js vendored under `editor/vendor/three/`), and `GET /favicon.ico` (its icon, which browsers ask
 //! for on any page of the service). Open like the probes (no API key): the page itself
 //! sends the key, when one is configured, on its `/v1` requests.
 //!
@@ -37,6 +37,7 @@ const HTML: &str = "text/html; charset=utf-8";
 const JAVASCRIPT: &str = "text/javascript; charset=utf-8";
 const CSS: &str = "text/css; charset=utf-8";
 const SVG: &str = "image/svg+xml";
+const TEXT: &str = "text/plain; charset=utf-8";
 
 /// Declares the editor's files, read at compile time from `editor/`.
 macro_rules! assets {
@@ -80,6 +81,18 @@ const ASSETS: &[Asset] = assets![
     ("js/sample.js", JAVASCRIPT),
     ("js/conditions.js", JAVASCRIPT),
     ("js/sketching.js", JAVASCRIPT),
+    ("js/space/main.js", JAVASCRIPT),
+    ("js/space/scene.js", JAVASCRIPT),
+    ("js/space/editing.js", JAVASCRIPT),
+    ("js/space/objects.js", JAVASCRIPT),
+    ("js/space/panel.js", JAVASCRIPT),
+    ("js/space/nurbs.js", JAVASCRIPT),
+    // three.js, vendored at the version in vendor/three/VERSION (scripts/refresh-three).
+    ("vendor/three/three.module.js", JAVASCRIPT),
+    ("vendor/three/three.core.js", JAVASCRIPT),
+    ("vendor/three/OrbitControls.js", JAVASCRIPT),
+    ("vendor/three/LICENSE", TEXT),
+    ("vendor/three/VERSION", TEXT),
 ];
 
 /// Where browsers look for a site's icon.

@@ -1,0 +1,215 @@
+// The 3D view's start: the canvas, the editor of editing.js, the panel, and the input —
+// press on an object and drag (Alt: along its normal), Esc cancels, release commits; drag the
+// background to orbit, Shift/middle/right or Space + drag to pan, wheel or pinch to zoom about
+// the pointer; F fits, Shift+1–7 the standard views, O toggles perspective, Ctrl+Z / Ctrl+Y
+// undo and redo, 1–9 choose a solution of the last move. Tests reach it through
+// `window.knotshapeSpace`.
+
+import { createView } from "./scene.js";
+import { createEditor } from "./editing.js";
+import { buildSpacePanel, drawSpacePanel, VIEW_BUTTONS } from "./panel.js";
+import { boxOf, polesOf } from "./objects.js";
+
+/** Zoom of one + or − key press. */
+const KEY_ZOOM = 1.25;
+
+function isTextField(target) {
+  return target instanceof HTMLElement && (target.isContentEditable || /^(INPUT|TEXTAREA|SELECT)$/.test(target.tagName)) && target.type !== "checkbox";
+}
+
+/** Sets up the 3D view in the page's `elements` (canvas `space`, its frame, the panel's
+ * parts); `onLeave()` is called when the user asks for the 2D view. */
+export function setupSpace(elements) {
+  let settleTimer = null;
+  const view = createView(elements.canvas, (kind) => {
+    if (kind === "settled") {
+      clearTimeout(settleTimer);
+      settleTimer = setTimeout(() => editor.viewSettled(), 150);
+    }
+  });
+  let scheduled = false;
+  const notify = () => {
+    if (scheduled) return;
+    scheduled = true;
+    queueMicrotask(() => {
+      scheduled = false;
+      drawSpacePanel(editor, elements, actions);
+      document.body.dataset.spaceBusy = String(editor.busy > 0 || editor.drag !== null);
+    });
+  };
+  const editor = createEditor(view, notify);
+
+  const fit = () => {
+    if (editor.items.length === 0) return;
+    view.fit(boxOf(editor.items.flatMap((item) => polesOf(item))));
+  };
+  const actions = {
+    select: (index) => editor.select(index),
+    standardView: (name) => {
+      if (editor.items.length === 0) return;
+      view.fit(boxOf(editor.items.flatMap((item) => polesOf(item))), name);
+    },
+    fit,
+    setPerspective: (on) => view.setPerspective(on),
+    setLayers: (layers) => editor.setLayers(layers),
+    setMethods: (kind, methods) => editor.setMethods(kind, methods),
+    choose: (index) => editor.choose(index),
+  };
+  buildSpacePanel(elements, actions);
+
+  new ResizeObserver(() => {
+    const frame = elements.frame;
+    if (frame.clientWidth > 0 && frame.clientHeight > 0) view.resize(frame.clientWidth, frame.clientHeight);
+  }).observe(elements.frame);
+
+  // Pointer: a press on an object picks and drags it; anywhere else the orbit controls
+  // take the press (this listener runs first: capture at the canvas).
+  const canvas = elements.canvas;
+  let gesture = null;
+  let spaceHeld = false;
+  const pixelOf = (event) => {
+    const bounds = canvas.getBoundingClientRect();
+    return [event.clientX - bounds.left, event.clientY - bounds.top];
+  };
+  canvas.addEventListener("pointerdown", (event) => {
+    canvas.focus({ preventScroll: true });
+    if (event.button !== 0 || event.shiftKey || event.ctrlKey || event.metaKey || spaceHeld) return;
+    const hit = editor.hit(pixelOf(event));
+    if (!hit) return;
+    event.stopImmediatePropagation();
+    event.preventDefault();
+    canvas.setPointerCapture(event.pointerId);
+    gesture = { pointerId: event.pointerId };
+    editor.startDrag(hit);
+  }, { capture: true });
+  canvas.addEventListener("pointermove", (event) => {
+    if (!gesture || event.pointerId !== gesture.pointerId) return;
+    event.stopImmediatePropagation();
+    editor.dragTo(pixelOf(event), event.altKey, event.timeStamp);
+  }, { capture: true });
+  const end = (event) => {
+    if (!gesture || event.pointerId !== gesture.pointerId) return;
+    event.stopImmediatePropagation();
+    gesture = null;
+    if (event.type === "pointercancel") editor.cancel();
+    else editor.release();
+  };
+  canvas.addEventListener("pointerup", end, { capture: true });
+  canvas.addEventListener("pointercancel", end, { capture: true });
+
+  const setSpaceHeld = (held) => {
+    spaceHeld = held;
+    view.controls.mouseButtons.LEFT = held ? view.THREE.MOUSE.PAN : view.THREE.MOUSE.ROTATE;
+  };
+  const zoomBy = (factor) => {
+    if (view.camera.isOrthographicCamera) {
+      view.camera.zoom *= factor;
+      view.camera.updateProjectionMatrix();
+    } else {
+      const target = view.controls.target;
+      view.camera.position.sub(target).multiplyScalar(1 / factor).add(target);
+    }
+    view.controls.update();
+    view.request();
+  };
+
+  // Keys, while the 3D view is shown: handled here first (the 2D editor's own keys do not
+  // apply to it).
+  window.addEventListener("keydown", (event) => {
+    if (document.body.dataset.mode !== "3d") return;
+    if (event.key === "Escape") {
+      if (gesture) gesture = null;
+      editor.cancel();
+      event.stopImmediatePropagation();
+      return;
+    }
+    if (isTextField(event.target)) return;
+    const command = event.ctrlKey || event.metaKey;
+    const lower = event.key.toLowerCase();
+    const standard = /^Digit([1-7])$/.exec(event.code);
+    let handled = true;
+    if (command && lower === "z") {
+      if (event.shiftKey) editor.redo();
+      else editor.undo();
+    } else if (command && lower === "y") {
+      editor.redo();
+    } else if (command || event.altKey) {
+      handled = event.key === "Alt";
+    } else if (event.shiftKey && standard) {
+      actions.standardView(VIEW_BUTTONS[Number(standard[1]) - 1].id);
+    } else if (lower === "f") {
+      fit();
+    } else if (lower === "o") {
+      const box = elements.view.querySelector('input[name="perspective"]');
+      box.checked = !box.checked;
+      view.setPerspective(box.checked);
+    } else if (event.key === " ") {
+      setSpaceHeld(true);
+    } else if (event.key === "+" || event.key === "=") {
+      zoomBy(KEY_ZOOM);
+    } else if (event.key === "-" || event.key === "_") {
+      zoomBy(1 / KEY_ZOOM);
+    } else if (/^[1-9]$/.test(event.key)) {
+      editor.choose(Number(event.key) - 1);
+    } else {
+      handled = !["Tab", "Enter"].includes(event.key) && event.target === canvas;
+    }
+    if (handled) {
+      event.preventDefault();
+      event.stopImmediatePropagation();
+    }
+  }, { capture: true });
+  window.addEventListener("keyup", (event) => {
+    if (event.key === " ") setSpaceHeld(false);
+  });
+  window.addEventListener("blur", () => setSpaceHeld(false));
+
+  const space = {
+    view,
+    editor,
+    active: () => document.body.dataset.mode === "3d",
+    /** Shows the 3D view with `objects` (`{ kind, shape, name }`). */
+    open: (objects, message) => {
+      document.body.dataset.mode = "3d";
+      view.resize(elements.frame.clientWidth, elements.frame.clientHeight);
+      return editor.open(objects, message);
+    },
+    /** Shows the 3D view with what it had. */
+    show: () => {
+      document.body.dataset.mode = "3d";
+      view.resize(elements.frame.clientWidth, elements.frame.clientHeight);
+      notify();
+    },
+    hide: () => {
+      editor.cancel();
+      document.body.dataset.mode = "2d";
+    },
+    undo: () => editor.undo(),
+    redo: () => editor.redo(),
+    cancel: () => editor.cancel(),
+    fit,
+  };
+
+  // For tests: the camera, projections of model points to client pixels, the objects.
+  window.knotshapeSpace = {
+    camera: () => view.describe(),
+    project: (point) => {
+      const bounds = canvas.getBoundingClientRect();
+      const [x, y] = view.toPixel(point);
+      return [bounds.left + x, bounds.top + y];
+    },
+    shapes: () => editor.items.map((item) => ({ kind: item.kind, name: item.name, shape: item.shape, triangles: item.mesh?.triangles.length ?? 0 })),
+    selected: () => editor.selected,
+    pick: () => editor.pick,
+    lastCommit: () => editor.lastCommit ?? null,
+    busy: () => editor.busy > 0 || editor.drag !== null,
+    history: () => ({ undo: editor.history.length, redo: editor.future.length }),
+    regions: () => editor.regions?.userData.counts ?? null,
+    timings: editor.timings,
+    moves: editor.moves,
+    renderMs: () => view.lastRenderMs,
+    /** Draws now (a test reads the canvas in the same task: the drawing buffer is not kept). */
+    renderNow: () => view.renderNow(),
+  };
+  return space;
+}

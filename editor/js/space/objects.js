@@ -1,0 +1,314 @@
+// What the 3D view draws of one object: a surface shaded from the service's certified mesh
+// with its iso-lines at the knots, a space curve as the service's certified polyline, each
+// with its control net on demand; the picked point, the drag target, and the translucent
+// regions a drag reaches. Positions are stored relative to the object's `origin` (its box's
+// centre) so that 32-bit floats keep them precise far from the origin.
+
+import * as THREE from "../../vendor/three/three.module.js";
+import { curveEvaluator, distinctInDomain, surfaceEvaluator } from "./nurbs.js";
+
+export const COLOURS = {
+  surface: 0x8fb3d9,
+  surfaceIdle: 0xc9ccd3,
+  curve: 0x0b5394,
+  curveIdle: 0x8a8f99,
+  iso: 0x33475e,
+  net: 0xb35806,
+  pick: 0xd7191c,
+  target: 0x1a9641,
+  knotRegion: 0x0072b2,
+  weightRegion: 0x7b3294,
+};
+
+/** Iso-line samples per knot span (at least 8 per line). */
+const ISO_SAMPLES_PER_SPAN = 12;
+
+/** The box `[min, max]` of points. */
+export function boxOf(points) {
+  const min = [Infinity, Infinity, Infinity];
+  const max = [-Infinity, -Infinity, -Infinity];
+  for (const p of points) {
+    for (let k = 0; k < 3; k += 1) {
+      const value = p[k] ?? 0;
+      if (value < min[k]) min[k] = value;
+      if (value > max[k]) max[k] = value;
+    }
+  }
+  return [min, max];
+}
+
+/** The poles of a curve or surface as one list. */
+export function polesOf(item) {
+  return item.kind === "surface" ? item.shape.control_points.flat() : item.shape.control_points;
+}
+
+function relative(origin, p) {
+  return [(p[0] ?? 0) - origin[0], (p[1] ?? 0) - origin[1], (p[2] ?? 0) - origin[2]];
+}
+
+function lineSegments(origin, segments, colour, opacity = 1) {
+  const positions = new Float32Array(segments.length * 6);
+  segments.forEach(([a, b], i) => {
+    positions.set(relative(origin, a), 6 * i);
+    positions.set(relative(origin, b), 6 * i + 3);
+  });
+  const geometry = new THREE.BufferGeometry();
+  geometry.setAttribute("position", new THREE.BufferAttribute(positions, 3));
+  const material = new THREE.LineBasicMaterial({ color: colour, transparent: opacity < 1, opacity });
+  return new THREE.LineSegments(geometry, material);
+}
+
+/** The control net's segments: rows and columns of a surface's poles, a curve's polygon. */
+function netSegments(item) {
+  const poles = item.shape.control_points;
+  const segments = [];
+  if (item.kind === "surface") {
+    for (let i = 0; i < poles.length; i += 1) {
+      for (let j = 0; j < poles[i].length; j += 1) {
+        if (i + 1 < poles.length) segments.push([poles[i][j], poles[i + 1][j]]);
+        if (j + 1 < poles[i].length) segments.push([poles[i][j], poles[i][j + 1]]);
+      }
+    }
+  } else {
+    for (let i = 0; i + 1 < poles.length; i += 1) segments.push([poles[i], poles[i + 1]]);
+  }
+  return segments;
+}
+
+/** The iso-lines of a plain surface at its distinct knots inside the domain: the `(u, v)` of
+ * their segments' ends, two pairs per segment, as one flat array. */
+export function isoParameters(plain) {
+  const nu = plain.control_points.length;
+  const nv = plain.control_points[0].length;
+  const us = distinctInDomain(plain.knots_u, plain.degree_u, nu);
+  const vs = distinctInDomain(plain.knots_v, plain.degree_v, nv);
+  const pairs = [];
+  const along = (values, fixedValues, pair) => {
+    const count = Math.max(8, ISO_SAMPLES_PER_SPAN * (values.length - 1));
+    const low = values[0];
+    const high = values[values.length - 1];
+    for (const fixed of fixedValues) {
+      for (let k = 0; k < count; k += 1) {
+        pairs.push(...pair(fixed, low + ((high - low) * k) / count), ...pair(fixed, low + ((high - low) * (k + 1)) / count));
+      }
+    }
+  };
+  along(vs, us, (u, v) => [u, v]);
+  along(us, vs, (v, u) => [u, v]);
+  return Float64Array.from(pairs);
+}
+
+/** Writes the points of `evaluate` at the `(u, v)` pairs of `parameters` that lie inside
+ * `affected` (all when null) into `array` (x, y, z relative to `origin`). */
+function evaluateInto(array, parameters, evaluate, origin, affected) {
+  const [[u0, u1], [v0, v1]] = affected ?? [[-Infinity, Infinity], [-Infinity, Infinity]];
+  for (let i = 0; 2 * i < parameters.length; i += 1) {
+    const u = parameters[2 * i];
+    const v = parameters[2 * i + 1];
+    if (u < u0 || u > u1 || v < v0 || v > v1) continue;
+    const p = evaluate(u, v);
+    array[3 * i] = p[0] - origin[0];
+    array[3 * i + 1] = p[1] - origin[1];
+    array[3 * i + 2] = p[2] - origin[2];
+  }
+}
+
+/** A three.js group for `item` (a surface with its `mesh`, or a curve with its `polyline`),
+ * positioned at `item.origin`. Its children are named: "body" (picked), "iso", "net". */
+export function buildGroup(item, { selected, showNet, showIso }) {
+  const group = new THREE.Group();
+  group.position.set(...item.origin);
+  if (item.kind === "surface") {
+    const mesh = item.mesh;
+    const positions = new Float32Array(mesh.vertices.length * 3);
+    mesh.vertices.forEach((p, i) => positions.set(relative(item.origin, p), 3 * i));
+    const normals = new Float32Array(mesh.normals.flat());
+    const geometry = new THREE.BufferGeometry();
+    geometry.setAttribute("position", new THREE.BufferAttribute(positions, 3));
+    geometry.setAttribute("normal", new THREE.BufferAttribute(normals, 3));
+    geometry.setIndex(mesh.triangles.flat());
+    geometry.computeBoundingSphere();
+    const material = new THREE.MeshLambertMaterial({
+      color: selected ? COLOURS.surface : COLOURS.surfaceIdle,
+      side: THREE.DoubleSide,
+      polygonOffset: true,
+      polygonOffsetFactor: 1,
+      polygonOffsetUnits: 1,
+    });
+    const body = new THREE.Mesh(geometry, material);
+    body.name = "body";
+    group.add(body);
+    if (item.plain) {
+      const parameters = isoParameters(item.plain);
+      const positions = new Float32Array((parameters.length / 2) * 3);
+      evaluateInto(positions, parameters, surfaceEvaluator(item.plain), item.origin, null);
+      const isoGeometry = new THREE.BufferGeometry();
+      isoGeometry.setAttribute("position", new THREE.BufferAttribute(positions, 3));
+      const iso = new THREE.LineSegments(isoGeometry, new THREE.LineBasicMaterial({ color: COLOURS.iso, transparent: true, opacity: 0.55 }));
+      iso.userData.parameters = parameters;
+      iso.name = "iso";
+      iso.visible = showIso;
+      group.add(iso);
+    }
+  } else {
+    const positions = new Float32Array(item.polyline.points.length * 3);
+    item.polyline.points.forEach((p, i) => positions.set(relative(item.origin, p), 3 * i));
+    const geometry = new THREE.BufferGeometry();
+    geometry.setAttribute("position", new THREE.BufferAttribute(positions, 3));
+    geometry.computeBoundingSphere();
+    const body = new THREE.Line(geometry, new THREE.LineBasicMaterial({ color: selected ? COLOURS.curve : COLOURS.curveIdle }));
+    body.name = "body";
+    group.add(body);
+  }
+  const net = lineSegments(item.origin, netSegments(item), COLOURS.net, 0.8);
+  net.name = "net";
+  net.visible = showNet && selected;
+  const poles = polesOf(item);
+  const polePositions = new Float32Array(poles.length * 3);
+  poles.forEach((p, i) => polePositions.set(relative(item.origin, p), 3 * i));
+  const poleGeometry = new THREE.BufferGeometry();
+  poleGeometry.setAttribute("position", new THREE.BufferAttribute(polePositions, 3));
+  const points = new THREE.Points(poleGeometry, new THREE.PointsMaterial({ color: COLOURS.net, size: 5, sizeAttenuation: false }));
+  points.name = "poles";
+  net.add(points);
+  group.add(net);
+  return group;
+}
+
+/** Moves the drawn object to `shape` (a preview): the mesh vertices inside `affected`
+ * (`[[u0, u1], [v0, v1]]`, null for all) or the polyline's points are evaluated on the new
+ * shape at their own parameters, the iso-lines and the net drawn again. Normals are kept from
+ * the committed mesh (the release meshes the new surface anew). Returns false when the page
+ * cannot evaluate the shape (a periodic one). */
+export function previewShape(item, group, plainShape, shape, affected) {
+  if (!plainShape) return false;
+  const body = group.getObjectByName("body");
+  const attribute = body.geometry.getAttribute("position");
+  const array = attribute.array;
+  if (item.kind === "surface") {
+    const evaluate = surfaceEvaluator(plainShape);
+    if (!item.meshParameters) item.meshParameters = Float64Array.from(item.mesh.parameters.flat());
+    evaluateInto(array, item.meshParameters, evaluate, item.origin, affected);
+    const iso = group.getObjectByName("iso");
+    if (iso) {
+      const isoPositions = iso.geometry.getAttribute("position");
+      evaluateInto(isoPositions.array, iso.userData.parameters, evaluate, item.origin, affected);
+      isoPositions.needsUpdate = true;
+    }
+  } else {
+    const evaluate = curveEvaluator(plainShape);
+    const [ox, oy, oz] = item.origin;
+    item.polyline.parameters.forEach((t, i) => {
+      const p = evaluate(t);
+      array[3 * i] = p[0] - ox;
+      array[3 * i + 1] = p[1] - oy;
+      array[3 * i + 2] = p[2] - oz;
+    });
+  }
+  attribute.needsUpdate = true;
+  body.geometry.computeBoundingSphere();
+  const net = group.getObjectByName("net");
+  replaceSegments(net, item.origin, netSegments({ kind: item.kind, shape }));
+  const poles = (item.kind === "surface" ? shape.control_points.flat() : shape.control_points).map((p) => relative(item.origin, p));
+  const polePositions = net.getObjectByName("poles").geometry.getAttribute("position");
+  poles.forEach((p, i) => polePositions.array.set(p, 3 * i));
+  polePositions.needsUpdate = true;
+  return true;
+}
+
+function replaceSegments(lines, origin, segments) {
+  const attribute = lines.geometry.getAttribute("position");
+  if (attribute.count !== segments.length * 2) {
+    const fresh = new Float32Array(segments.length * 6);
+    lines.geometry.setAttribute("position", new THREE.BufferAttribute(fresh, 3));
+  }
+  const array = lines.geometry.getAttribute("position").array;
+  segments.forEach(([a, b], i) => {
+    array.set(relative(origin, a), 6 * i);
+    array.set(relative(origin, b), 6 * i + 3);
+  });
+  lines.geometry.getAttribute("position").needsUpdate = true;
+}
+
+/** A small marker (a screen-sized dot) at `point`. */
+export function marker(point, colour, size = 9) {
+  const geometry = new THREE.BufferGeometry();
+  geometry.setAttribute("position", new THREE.BufferAttribute(new Float32Array(point), 3));
+  const material = new THREE.PointsMaterial({ color: colour, size, sizeAttenuation: false, depthTest: false });
+  const points = new THREE.Points(geometry, material);
+  points.renderOrder = 10;
+  return points;
+}
+
+/** Moves a marker to `point`. */
+export function moveMarker(points, point) {
+  const attribute = points.geometry.getAttribute("position");
+  attribute.array.set(point);
+  attribute.needsUpdate = true;
+}
+
+/** Triangles of a planar polygon (closed ring of 3D points) in its own plane, as positions
+ * relative to `origin` (three.js's ear clipping on the ring projected onto its best plane). */
+function ringTriangles(origin, ring) {
+  const points = ring.length > 1 && ring[0].every((x, k) => x === ring[ring.length - 1][k]) ? ring.slice(0, -1) : ring;
+  if (points.length < 3) return [];
+  const vectors = points.map((p) => new THREE.Vector3(...relative(origin, p)));
+  // Newell's normal of the ring.
+  const normal = new THREE.Vector3();
+  for (let i = 0; i < vectors.length; i += 1) {
+    const a = vectors[i];
+    const b = vectors[(i + 1) % vectors.length];
+    normal.x += (a.y - b.y) * (a.z + b.z);
+    normal.y += (a.z - b.z) * (a.x + b.x);
+    normal.z += (a.x - b.x) * (a.y + b.y);
+  }
+  if (normal.lengthSq() === 0) return [];
+  normal.normalize();
+  const axis = Math.abs(normal.x) < 0.9 ? new THREE.Vector3(1, 0, 0) : new THREE.Vector3(0, 1, 0);
+  const e1 = axis.sub(normal.clone().multiplyScalar(axis.dot(normal))).normalize();
+  const e2 = normal.clone().cross(e1);
+  const flat = vectors.map((v) => new THREE.Vector2(v.dot(e1), v.dot(e2)));
+  const triangles = THREE.ShapeUtils.triangulateShape(flat, []);
+  return triangles.flatMap(([a, b, c]) => [vectors[a], vectors[b], vectors[c]]);
+}
+
+/** The translucent regions of a regions answer (surfaces: knot rings and weight
+ * tetrahedra; curves: knot families' polygons and weight polygons), as one group at
+ * `origin`; `families` filters the knot families drawn (null: all). */
+export function regionsGroup(origin, answer, kind) {
+  const group = new THREE.Group();
+  group.position.set(...origin);
+  const knotTriangles = [];
+  const weightTriangles = [];
+  if (kind === "surface") {
+    for (const method of answer.methods ?? []) {
+      for (const region of method.knot_regions ?? []) {
+        for (const ring of region.rings ?? []) knotTriangles.push(...ringTriangles(origin, ring));
+      }
+      for (const tetrahedron of method.tetrahedra ?? []) {
+        const [a, b, c, d] = tetrahedron.tetrahedron.map((p) => new THREE.Vector3(...relative(origin, p)));
+        weightTriangles.push(a, b, c, a, b, d, a, c, d, b, c, d);
+      }
+    }
+  } else {
+    for (const family of answer.families ?? []) {
+      for (const region of family.regions ?? []) knotTriangles.push(...ringTriangles(origin, region.polygon));
+    }
+    for (const region of answer.weight_regions ?? []) {
+      if (region.polygon) weightTriangles.push(...ringTriangles(origin, region.polygon));
+    }
+  }
+  const add = (triangles, colour, name) => {
+    if (triangles.length === 0) return;
+    const geometry = new THREE.BufferGeometry().setFromPoints(triangles);
+    const material = new THREE.MeshBasicMaterial({ color: colour, transparent: true, opacity: 0.18, side: THREE.DoubleSide, depthWrite: false });
+    const mesh = new THREE.Mesh(geometry, material);
+    mesh.name = name;
+    mesh.renderOrder = 5;
+    group.add(mesh);
+  };
+  add(knotTriangles, COLOURS.knotRegion, "knot-regions");
+  add(weightTriangles, COLOURS.weightRegion, "weight-regions");
+  group.userData.counts = { knots: knotTriangles.length / 3, weights: weightTriangles.length / 3 };
+  return group;
+}
