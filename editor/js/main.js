@@ -43,7 +43,7 @@ const elements = Object.fromEntries(Object.entries(IDS).map(([name, id]) => [nam
 /** The 3D view's elements. */
 const SPACE_IDS = {
   canvas: "space", frame: "space-frame", objects: "space-objects", methods: "space-methods", view: "space-view",
-  solutions: "space-solutions", message: "space-message", error: "space-error",
+  solutions: "space-solutions", message: "space-message", error: "space-error", undo: "undo", redo: "redo",
 };
 const spaceElements = Object.fromEntries(Object.entries(SPACE_IDS).map(([name, id]) => [name, document.getElementById(id)]));
 let space = null;
@@ -56,6 +56,8 @@ function toggleMode() {
     const item = space.editor.selectedItem();
     space.hide();
     document.getElementById("view-mode").textContent = "3D view";
+    // The 2D panel (its Undo and Redo among them) drawn again for the 2D editor.
+    store.set({ ...store.get() });
     if (item?.kind === "curve" && item.edited) committing.loadCurve(files.editable(item.shape), `${item.name} in 2D (its x–y projection; z is kept).`);
     return;
   }

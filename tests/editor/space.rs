@@ -303,6 +303,9 @@ async fn a_surface_point_dragged_in_3d_lands_on_its_target_esc_cancels_and_undo_
         .run("return window.knotshapeSpace.regions();", vec![])
         .await;
     assert!(regions["knots"].as_u64().unwrap() > 0, "{regions}");
+    page.run("window.knotshapeSpace.renderNow(); return true;", vec![])
+        .await;
+    screenshot(&browser.client, "editor-3d-surface.png", true).await;
     page.key('\u{E00C}', false).await;
     page.release().await;
     space_settled(&page).await;
@@ -344,9 +347,12 @@ async fn a_surface_point_dragged_in_3d_lands_on_its_target_esc_cancels_and_undo_
     );
     let committed = shapes(&page).await[0].clone();
     assert_ne!(committed, original);
-    screenshot(&browser.client, "editor-3d-surface.png", true).await;
 
-    // Undo and redo.
+    // Undo and redo (the toolbar's buttons follow the 3D view's history).
+    let undo_enabled = page
+        .run("return !document.getElementById('undo').disabled;", vec![])
+        .await;
+    assert_eq!(undo_enabled, json!(true));
     page.ctrl_z(false).await;
     space_settled(&page).await;
     assert_eq!(shapes(&page).await[0], original, "undo");

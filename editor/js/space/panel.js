@@ -95,6 +95,9 @@ export function drawSpacePanel(editor, elements, actions) {
     return li;
   });
   elements.solutions.replaceChildren(...lines);
+  // The toolbar's Undo and Redo step through the 3D view's history while it is shown.
+  elements.undo.disabled = editor.history.length === 0 || editor.drag !== null;
+  elements.redo.disabled = editor.future.length === 0 || editor.drag !== null;
   elements.message.textContent = editor.busy > 0 && !editor.message ? "Working…" : editor.message;
   elements.error.textContent = editor.error;
 }
