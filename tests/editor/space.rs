@@ -13,7 +13,7 @@ use serde_json::{Value, json};
 use super::browser::Browser;
 use super::page::Page;
 use super::steps::{p95, screenshot, target_dir};
-use super::timing::server_time;
+use super::timing::{main_thread_work, server_time};
 use crate::helpers::{TestApp, spawn_app};
 
 /// A bicubic of `n × n` poles waved as the page's sample (`sampleSurface` in sample.js).
@@ -259,6 +259,31 @@ async fn the_3d_view_orbits_pans_zooms_and_switches_views_without_changing_the_m
     let zoomed = camera(&page).await;
     let near = distance(&floats(&zoomed["position"]), &floats(&zoomed["target"]));
     assert!(near < 0.9 * far, "the wheel zooms in: {far} -> {near}");
+    // Zoomed in further, the pixel is much smaller: the surface is meshed again, finer.
+    let triangles = |page: &Page<'_>| {
+        let page = page.client.clone();
+        async move {
+            page.execute(
+                "return window.knotshapeSpace.shapes()[0].triangles;",
+                vec![],
+            )
+            .await
+            .unwrap()
+            .as_u64()
+            .unwrap()
+        }
+    };
+    let coarse = triangles(&page).await;
+    for _ in 0..4 {
+        page.wheel_at(centre, -600).await;
+    }
+    page.wait_until(
+        "the surface is meshed again",
+        &format!("window.knotshapeSpace.shapes()[0].triangles > {coarse}"),
+    )
+    .await;
+    space_settled(&page).await;
+    assert!(triangles(&page).await > coarse);
 
     // Standard views (Shift+5: top) and the orthographic camera (O); F fits again.
     page.key('5', true).await;
@@ -359,6 +384,40 @@ async fn a_surface_point_dragged_in_3d_lands_on_its_target_esc_cancels_and_undo_
     page.ctrl_z(true).await;
     space_settled(&page).await;
     assert_eq!(shapes(&page).await[0], committed, "redo");
+
+    // With Alt held the target moves along the surface normal at the picked point.
+    let from = pixel_of(&page, &surface_point(&app, &committed, [0.6, 0.4]).await).await;
+    page.key_down('\u{E00A}').await;
+    page.drag(from, &path(from, (from.0 + 10, from.1 - 35), 5))
+        .await;
+    page.key_up('\u{E00A}').await;
+    space_settled(&page).await;
+    let commit = last_commit(&page).await;
+    let parameter = [
+        commit["parameter"][0].as_f64().unwrap(),
+        commit["parameter"][1].as_f64().unwrap(),
+    ];
+    let (status, frame) = app
+        .post_json(
+            "/v1/surfaces/evaluate",
+            &json!({"surface": committed, "parameters": [parameter], "normals": true}),
+        )
+        .await;
+    assert_eq!(status, 200, "{frame}");
+    let base = floats(&frame["points"][0]);
+    let normal = floats(&frame["normals"][0]);
+    let offset: Vec<f64> = floats(&commit["target"])
+        .iter()
+        .zip(&base)
+        .map(|(t, b)| t - b)
+        .collect();
+    let along: f64 = offset.iter().zip(&normal).map(|(o, n)| o * n).sum();
+    let length = distance(&offset, &[0.0, 0.0, 0.0]);
+    assert!(length > 1e-3, "the Alt drag moved the target: {offset:?}");
+    assert!(
+        along.abs() >= length * (1.0 - 1e-9),
+        "Alt drags along the normal {normal:?}: offset {offset:?}"
+    );
     assert_eq!(page.script_errors().await, Vec::<String>::new());
     browser.close().await;
 }
@@ -540,7 +599,7 @@ const FRAME_MS: f64 = 16.0;
 #[tokio::test]
 async fn drag_to_redraw_in_3d_on_a_30_by_30_surface_is_within_a_frame() {
     let app = spawn_app().await;
-    let browser = Browser::start_alone().await;
+    let browser = Browser::start_alone_gl().await;
     let page = Page::open(&browser.client, &app.address).await;
     let surface = waved_surface(30);
     paste_object(&page, "surface", &surface).await;
@@ -562,8 +621,18 @@ async fn drag_to_redraw_in_3d_on_a_30_by_30_surface_is_within_a_frame() {
         .collect();
     let route = "/v1/surfaces/shape/solve";
     let (seconds_before, count_before) = server_time(&app, route).await;
+    super::browser::devtools(&browser.client, "Performance.enable", json!({})).await;
+    let work_before = main_thread_work(&browser).await;
+    let started = std::time::Instant::now();
     page.drag_paced(at, &moves).await;
+    let elapsed_ms = started.elapsed().as_secs_f64() * 1000.0;
+    let work_after = main_thread_work(&browser).await;
     space_settled(&page).await;
+    let work: Vec<String> = work_before
+        .iter()
+        .zip(&work_after)
+        .map(|((name, before), (_, after))| format!("{name} {:.0}", after - before))
+        .collect();
     let (seconds_after, count_after) = server_time(&app, route).await;
     let server_ms =
         1000.0 * (seconds_after - seconds_before) / (count_after - count_before).max(1.0);
@@ -593,9 +662,11 @@ async fn drag_to_redraw_in_3d_on_a_30_by_30_surface_is_within_a_frame() {
         "3D drag-to-redraw, bicubic 30 x 30 poles ({triangles} triangles), {} previews: \
          p95 {p95_total:.1} ms, median {median:.1} ms; p95 of the parts: event to request \
          {p95_wait:.1} ms, request {p95_request:.1} ms (the server's mean {server_ms:.2} ms over \
-         {} solves), preview drawn {p95_draw:.1} ms, then the next frame {p95_frame:.1} ms; canvas {size}\n",
+         {} solves), preview drawn {p95_draw:.1} ms, then the next frame {p95_frame:.1} ms; canvas {size}; the page's main thread over the \
+         {elapsed_ms:.0} ms drag: {}\n",
         rows.len(),
-        count_after - count_before
+        count_after - count_before,
+        work.join(", ")
     );
     println!("{report}");
     std::fs::create_dir_all(target_dir()).unwrap();

@@ -38,7 +38,7 @@ struct Timing {
 
 /// The page's main-thread counters from DevTools' `Performance.getMetrics`: script, style,
 /// layout and all tasks, in milliseconds, and how often style and layout ran.
-async fn main_thread_work(browser: &Browser) -> Vec<(&'static str, f64)> {
+pub async fn main_thread_work(browser: &Browser) -> Vec<(&'static str, f64)> {
     let answer = devtools(
         &browser.client,
         "Performance.getMetrics",
