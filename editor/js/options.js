@@ -55,4 +55,8 @@ export const SHORTCUTS = [
   ["Enter / Backspace", "points tool: make the curve / drop the last point"],
   ["1 – 9", "choose a solution from the list (also during a drag)"],
   ["Ctrl+Z / Ctrl+Shift+Z", "undo / redo"],
+  ["3D: drag / Shift + drag", "orbit / pan (also the middle or right button, Space + drag)"],
+  ["3D: Alt + drag", "move the picked point along the surface normal (a curve's principal normal)"],
+  ["3D: Shift+1 – Shift+7", "front, back, left, right, top, bottom, isometric view"],
+  ["3D: O", "perspective or orthographic"],
 ];
