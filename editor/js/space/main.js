@@ -152,7 +152,9 @@ export function setupSpace(elements) {
     } else if (/^[1-9]$/.test(event.key)) {
       editor.choose(Number(event.key) - 1);
     } else {
-      handled = !["Tab", "Enter"].includes(event.key) && event.target === canvas;
+      // The 2D editor's keys (its tools, nudges) do nothing in 3D; Tab and Enter keep their
+      // meaning on the page's controls.
+      handled = !["Tab", "Enter"].includes(event.key);
     }
     if (handled) {
       event.preventDefault();
