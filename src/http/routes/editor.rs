@@ -197,6 +197,34 @@ mod tests {
     }
 
     #[test]
+    fn the_vendored_three_js_is_the_version_its_version_file_pins() {
+        let body = |path: &str| {
+            ASSETS
+                .iter()
+                .find(|asset| asset.path == path)
+                .map(|asset| asset.body)
+                .unwrap_or_else(|| panic!("{path} is not served"))
+        };
+        // "three 0.187.0" → three.js's revision 187.
+        let version = body("vendor/three/VERSION");
+        let pinned = version
+            .lines()
+            .next()
+            .and_then(|line| line.strip_prefix("three 0."))
+            .and_then(|rest| rest.split('.').next())
+            .expect("VERSION starts with `three 0.N.M`");
+        assert!(
+            body("vendor/three/three.core.js").contains(&format!("REVISION = '{pinned}'")),
+            "three.core.js is not revision {pinned}"
+        );
+        assert!(body("vendor/three/LICENSE").contains("MIT License"));
+        assert!(
+            body("vendor/three/OrbitControls.js").contains("from './three.module.js';"),
+            "OrbitControls imports the vendored module"
+        );
+    }
+
+    #[test]
     fn entity_tags_differ_for_different_bytes() {
         assert_ne!(entity_tag(b"a"), entity_tag(b"b"));
         assert_eq!(entity_tag(b""), "\"cbf29ce484222325\"");
