@@ -29,14 +29,6 @@ pub const CHROMEDRIVER: &str = "/usr/bin/chromedriver";
 /// The browser window's size, in CSS pixels.
 pub const WINDOW: (u32, u32) = (1280, 1000);
 
-/// How Chromium composites the page: in software (`--disable-gpu`, the default of these
-/// tests) or on its GPU path, here SwiftShader.
-#[derive(Clone, Copy)]
-enum Compositing {
-    Software,
-    Gpu,
-}
-
 /// A browser session; chromedriver and the profile go away with it.
 pub struct Browser {
     pub client: Client,
@@ -50,24 +42,16 @@ impl Browser {
     /// Starts chromedriver and a headless Chromium. Panics, saying how to install them,
     /// when either is missing.
     pub async fn start() -> Browser {
-        Browser::launch(Hold::Shared(SESSIONS.read().await), Compositing::Software).await
+        Browser::launch(Hold::Shared(SESSIONS.read().await)).await
     }
 
     /// As [`Browser::start`], once no other session is running, and none starts until this
     /// one ends.
     pub async fn start_alone() -> Browser {
-        Browser::launch(Hold::Alone(SESSIONS.write().await), Compositing::Software).await
+        Browser::launch(Hold::Alone(SESSIONS.write().await)).await
     }
 
-    /// As [`Browser::start_alone`], compositing as a browser with a GPU does (here through
-    /// SwiftShader, ANGLE's software GL): a WebGL canvas's frames reach the screen without
-    /// being read back into the page's memory on its main thread, which software compositing
-    /// does for every frame (the 3D view's drag timings).
-    pub async fn start_alone_gl() -> Browser {
-        Browser::launch(Hold::Alone(SESSIONS.write().await), Compositing::Gpu).await
-    }
-
-    async fn launch(hold: Hold, compositing: Compositing) -> Browser {
+    async fn launch(hold: Hold) -> Browser {
         for binary in [CHROMIUM, CHROMEDRIVER] {
             assert!(
                 std::path::Path::new(binary).exists(),
@@ -95,10 +79,7 @@ impl Browser {
                 "args": [
                     "--headless",
                     "--no-sandbox",
-                    match compositing {
-                        Compositing::Software => "--disable-gpu",
-                        Compositing::Gpu => "--use-angle=swiftshader",
-                    },
+                    "--disable-gpu",
                     // WebGL by SwiftShader (the 3D view): software rendering, trusted local pages.
                     "--enable-unsafe-swiftshader",
                     "--disable-quic",

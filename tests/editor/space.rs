@@ -599,7 +599,7 @@ const FRAME_MS: f64 = 16.0;
 #[tokio::test]
 async fn drag_to_redraw_in_3d_on_a_30_by_30_surface_is_within_a_frame() {
     let app = spawn_app().await;
-    let browser = Browser::start_alone_gl().await;
+    let browser = Browser::start_alone().await;
     let page = Page::open(&browser.client, &app.address).await;
     let surface = waved_surface(30);
     paste_object(&page, "surface", &surface).await;

@@ -282,6 +282,7 @@ export function createEditor(view, notify) {
       cancelled: false,
     };
     editor.drag = drag;
+    view.setInteractive(true);
     editor.solutions = [];
     showMarker(editor.markers.pick, hit.point);
     notify();
@@ -404,6 +405,7 @@ export function createEditor(view, notify) {
   async function finish(drag) {
     if (editor.drag !== drag) return;
     editor.drag = null;
+    view.setInteractive(false);
     hideTarget();
     if (!drag.shown) {
       redraw(drag.item);
@@ -448,6 +450,7 @@ export function createEditor(view, notify) {
     if (!drag) return;
     drag.cancelled = true;
     editor.drag = null;
+    view.setInteractive(false);
     hideTarget();
     redraw(drag.item);
   }

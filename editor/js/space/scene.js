@@ -10,6 +10,9 @@ import { OrbitControls } from "../../vendor/three/OrbitControls.js";
 /** The perspective camera's vertical field of view, degrees. */
 const FIELD_OF_VIEW = 35;
 
+/** The share of the canvas's pixels (per side) drawn during a drag. */
+const INTERACTIVE_RESOLUTION = 0.5;
+
 /** The standard views: the direction from the focus to the eye, and the up vector (z up, as
  * CAD models are drawn). */
 export const VIEWS = {
@@ -27,7 +30,7 @@ export const VIEWS = {
 export function createView(canvas, onChange) {
   // No multisampling: the page must stay within a frame under software WebGL too (a
   // drag on a 30 × 30-pole surface, tests/editor/space.rs).
-  const renderer = new THREE.WebGLRenderer({ canvas, antialias: false });
+  const renderer = new THREE.WebGLRenderer({ canvas, antialias: false, alpha: false, stencil: false });
   renderer.setPixelRatio(1);
   renderer.setClearColor(0xffffff, 1);
   const scene = new THREE.Scene();
@@ -93,6 +96,17 @@ export function createView(canvas, onChange) {
     perspective.aspect = width / height;
     perspective.updateProjectionMatrix();
     syncOrthographic(view);
+    view.request();
+  };
+
+  /** While `on` (a drag), the canvas is drawn at `INTERACTIVE_RESOLUTION` of its pixels
+   * and scaled up by the browser: software WebGL (and a browser compositing in software,
+   * which copies every frame back to the page) costs in proportion to the pixels. */
+  view.setInteractive = (on) => {
+    const ratio = on ? INTERACTIVE_RESOLUTION : 1;
+    if (renderer.getPixelRatio() === ratio) return;
+    renderer.setPixelRatio(ratio);
+    renderer.setSize(view.size.width, view.size.height, false);
     view.request();
   };
 
