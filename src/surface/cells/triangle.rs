@@ -272,9 +272,8 @@ mod tests {
                 let a = 1.0 - b - c;
                 let s = a * x[0][0] + b * x[1][0] + c * x[2][0];
                 let t = a * x[0][1] + b * x[1][1] + c * x[2][1];
-                let on: Point = std::array::from_fn(|k| {
-                    a * points[0][k] + b * points[1][k] + c * points[2][k]
-                });
+                let on: Point =
+                    std::array::from_fn(|k| a * points[0][k] + b * points[1][k] + c * points[2][k]);
                 worst = worst.max(norm(sub(evaluate(&cell.net, degrees, s, t), on)));
             }
         }
@@ -317,7 +316,11 @@ mod tests {
             let net: Vec<[f64; 4]> = (0..(p + 1) * (q + 1))
                 .map(|k| {
                     let (r, c) = (k / (q + 1), k % (q + 1));
-                    let w = if rational { 0.3 + 2.7 * random.next() } else { 1.0 };
+                    let w = if rational {
+                        0.3 + 2.7 * random.next()
+                    } else {
+                        1.0
+                    };
                     let point = [
                         r as f64 / p as f64 + 0.3 * (random.next() - 0.5),
                         c as f64 / q as f64 + 0.3 * (random.next() - 0.5),
