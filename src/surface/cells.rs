@@ -32,6 +32,9 @@
 //!
 //! Since `L` maps the triangulation onto the mesh and `S` the square onto the surface, every
 //! point of either is within that bound of a point of the other (Hausdorff distance).
+//!
+//! Any one triangle of a cell, whatever its vertices, also has a bound of its own, by the
+//! surface's second partials along its edges: [`triangle`].
 
 pub(crate) mod triangle;
 
