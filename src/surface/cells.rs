@@ -32,6 +32,11 @@
 //!
 //! Since `L` maps the triangulation onto the mesh and `S` the square onto the surface, every
 //! point of either is within that bound of a point of the other (Hausdorff distance).
+//!
+//! Any one triangle of a cell, whatever its vertices, also has a bound of its own, by the
+//! surface's second partials along its edges: [`triangle`].
+
+pub(crate) mod triangle;
 
 use super::surface::Surface;
 use crate::spline::bernstein::BINOMIAL;
@@ -241,33 +246,8 @@ impl Cell {
 fn rational_bilinear_bound(net: &[[f64; 4]], (p, q): (usize, usize), corners: &[Point; 4]) -> f64 {
     let (m, n) = (p + 1, q + 1);
     let wide = n + 1;
-    let mut difference = vec![[0.0; 3]; (m + 1) * (n + 1)];
-    // Scaled coefficients: X·1 with 1 = (1 − s + s)(1 − t + t), and W·B with B's scaled
-    // coefficients its corners (C(1, i) C(1, j) = 1).
-    for r in 0..=p {
-        for s in 0..=q {
-            let scale = BINOMIAL[p][r] * BINOMIAL[q][s];
-            let h = net[r * (q + 1) + s];
-            for (i, j) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
-                let corner = corners[i + 2 * j];
-                let slot = &mut difference[(r + i) * wide + s + j];
-                for c in 0..3 {
-                    slot[c] += scale * (h[c] - h[3] * corner[c]);
-                }
-            }
-        }
-    }
-    let mut largest = 0.0f64;
-    for k in 0..=m {
-        for l in 0..=n {
-            let value = &mut difference[k * wide + l];
-            let scale = BINOMIAL[m][k] * BINOMIAL[n][l];
-            for c in value.iter_mut() {
-                *c /= scale;
-            }
-            largest = largest.max(norm(*value));
-        }
-    }
+    let difference = homogeneous_difference(net, (p, q), corners);
+    let largest = difference.iter().map(|d| norm(*d)).fold(0.0f64, f64::max);
     // `X − W B` vanishes at the corners, so its bilinear interpolant is 0 and the
     // second-difference bound applies to it as well (module docs).
     let mut second = [0.0f64; 2];
@@ -289,6 +269,42 @@ fn rational_bilinear_bound(net: &[[f64; 4]], (p, q): (usize, usize), corners: &[
     let bending = ((m * (m - 1)) as f64 * second[0] + (n * (n - 1)) as f64 * second[1]) / 8.0;
     let smallest_weight = net.iter().map(|h| h[3]).fold(f64::INFINITY, f64::min);
     largest.min(bending) / smallest_weight
+}
+
+/// The Bernstein coefficients, bidegree `(p + 1, q + 1)` row by row, of `X − W B` for a
+/// homogeneous net (`X` its weighted points, `W` its weight) and `B` the bilinear function
+/// with `corners` at `(0, 0), (1, 0), (0, 1), (1, 1)`: `X · 1` with `1 = (1 − s + s)(1 − t +
+/// t)` and `W · B`, `B`'s scaled coefficients being its corners (`C(1, i) C(1, j) = 1`).
+pub(crate) fn homogeneous_difference(
+    net: &[[f64; 4]],
+    (p, q): (usize, usize),
+    corners: &[Point; 4],
+) -> Vec<Point> {
+    let (m, n) = (p + 1, q + 1);
+    let wide = n + 1;
+    let mut difference = vec![[0.0; 3]; (m + 1) * (n + 1)];
+    for r in 0..=p {
+        for s in 0..=q {
+            let scale = BINOMIAL[p][r] * BINOMIAL[q][s];
+            let h = net[r * (q + 1) + s];
+            for (i, j) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
+                let corner = corners[i + 2 * j];
+                let slot = &mut difference[(r + i) * wide + s + j];
+                for c in 0..3 {
+                    slot[c] += scale * (h[c] - h[3] * corner[c]);
+                }
+            }
+        }
+    }
+    for k in 0..=m {
+        for l in 0..=n {
+            let scale = BINOMIAL[m][k] * BINOMIAL[n][l];
+            for c in difference[k * wide + l].iter_mut() {
+                *c /= scale;
+            }
+        }
+    }
+    difference
 }
 
 impl Surface {

@@ -2,22 +2,33 @@
 //! parameter domain (the knot-span patches, halved or cut while their bound exceeds the
 //! tolerance, [`super::cells`]) triangulated without cracks.
 //!
-//! Refinement: a cell whose two-triangle bound `ε₁ + |T| / 4` exceeds the tolerance is cut
-//! along `u` or `v` (where its net bends more; by the longer side when it is flat and only
-//! twisted) into `k = ⌈√(bound / τ)⌉` equal parts, `2 <= k <= 8` (the bound shrinks about as
-//! the square of the size). Triangulation: every leaf's boundary carries the corners of its
-//! neighbours that lie on its edges (the vertices are shared by their exact parameters, so
-//! neighbouring triangles share whole edges: no cracks, no T-junctions); a leaf without such
-//! vertices is two triangles (the shorter diagonal), one with them a fan from its centre, whose
-//! bound `ε₁ + |T| / 16 + max |S − B|` at its centre and edge vertices is checked; a leaf over
-//! the tolerance is then refined *strictly*, until its pieces meet `2 ε₁ + |T| / 16` (the fan's
-//! bound whatever its neighbours, as `|S − B| <= ε₁` at every vertex) as well, and the leaves
-//! are triangulated again. Triangles turn counter-clockwise in `(u, v)`, so
-//! that seen from the side of the normal `S_u × S_v` they are counter-clockwise too.
+//! Refinement: a cell whose two-triangle bound exceeds the tolerance is cut into the fewest
+//! equal parts `k <= 8` along `u` or `v` after which every part is within the tolerance
+//! ([`fitting_cut`]), or, when there is none, along `u` or `v` (where its net bends more; by
+//! the longer side when it is flat and only twisted) into `k = ⌈√(bound / τ)⌉` equal parts,
+//! `2 <= k <= 8` (the bound shrinks about as the square of the size). The two-triangle bound is the cell's `ε₁ + |T| / 4` or, when that exceeds the
+//! tolerance, the lesser of it and, over the two diagonals, the larger of the two triangles'
+//! own bounds ([`super::cells::triangle`]). Triangulation: every leaf's boundary carries the
+//! corners of its neighbours that lie on its edges (the vertices are shared by their exact
+//! parameters, so neighbouring triangles share whole edges: no cracks, no T-junctions); a leaf
+//! without such vertices is two triangles over the diagonal with the lesser bound (the shorter
+//! in space on a tie); one with them is its boundary polygon triangulated without a new
+//! vertex (`n − 2` triangles, the triangulation whose largest triangle bound is least, by
+//! dynamic programming) or, when that exceeds the tolerance, a fan from its centre, bounded by
+//! the lesser of `ε₁ + |T| / 16 + max |S − B|` at its centre and edge vertices and its
+//! triangles' bounds; a leaf over the tolerance is then refined *strictly*, until its pieces
+//! meet `2 ε₁ + |T| / 16` (the fan's bound whatever its neighbours, as `|S − B| <= ε₁` at
+//! every vertex) as well, and the leaves are triangulated again. Triangles turn
+//! counter-clockwise in `(u, v)`, so that seen from the side of the normal `S_u × S_v` they
+//! are counter-clockwise too.
 
 use std::collections::{BTreeMap, HashMap};
 
-use super::cells::{Cell, CellBounds, vertex_gap};
+mod plan;
+
+use plan::{Plan, quad_plan};
+
+use super::cells::{Cell, CellBounds};
 use super::differential::{Inward, unit_normal};
 use super::surface::{Direction, Surface};
 use crate::spline::vector::{add, cross, distance, norm, scale, sub};
@@ -104,14 +115,11 @@ impl Surface {
             .map(|rect| (self.cell(rect), false))
             .collect();
         let mut points: HashMap<(u64, u64), (Point, Point)> = HashMap::new();
+        let mut plans: Vec<Plan> = Vec::new();
         for _ in 0..MAX_ROUNDS {
             while let Some((cell, strict)) = pending.pop() {
                 let bounds = cell.bounds(degrees, rational);
-                let mut bound = bounds.bilinear + bounds.twist / 4.0;
-                if strict {
-                    bound = bound.max(2.0 * bounds.bilinear + bounds.twist / 16.0);
-                }
-                bound += bounds.rounding;
+                let bound = leaf_bound(&cell, &bounds, degrees, rational, target, strict);
                 if bound <= target {
                     leaves.push((cell, bounds));
                     if 2 * leaves.len() > max_triangles {
@@ -123,8 +131,17 @@ impl Surface {
                     // Finer cells only round worse: the parameters cannot resolve the tolerance.
                     return Err(below_floor());
                 }
-                let parts = cut_parts(bound, target);
                 let in_u = cut_direction(&cell, &bounds, degrees);
+                if let Some(parts) =
+                    fitting_cut(&cell, degrees, rational, (bound, target), in_u, strict)
+                {
+                    leaves.extend(parts);
+                    if 2 * leaves.len() > max_triangles {
+                        return Err(too_many());
+                    }
+                    continue;
+                }
+                let parts = cut_parts(bound, target);
                 let children = cell.split(degrees, in_u, parts);
                 if !children.iter().all(|c| c.u.0 < c.u.1 && c.v.0 < c.v.1) {
                     return Err(below_floor());
@@ -133,22 +150,18 @@ impl Surface {
             }
             let layout = Layout::of(&leaves);
             let mut over = Vec::new();
+            plans.clear();
             for (index, (cell, bounds)) in leaves.iter().enumerate() {
-                let hanging = layout.boundary(cell).len() > 4;
-                if hanging {
-                    let mut worst = 0.0f64;
-                    for (u, v) in layout.boundary(cell).into_iter().chain([centre(cell)]) {
-                        let point = self.vertex(&mut points, u, v).0;
-                        worst = worst.max(vertex_gap(cell, degrees, (u, v), point));
-                    }
-                    if bounds.bilinear + bounds.twist / 16.0 + worst + bounds.rounding > target {
-                        over.push(index);
-                    }
+                let plan = self.plan(cell, bounds, &layout, &mut points, target);
+                if plan.bound + bounds.rounding > target {
+                    over.push(index);
                 }
+                plans.push(plan);
             }
             if over.is_empty() {
                 return self.triangulate(
                     &leaves,
+                    &plans,
                     &layout,
                     &mut points,
                     magnitude,
@@ -190,16 +203,17 @@ impl Surface {
     }
 
     /// The mesh of the leaves (module docs), with the bound they meet.
+    #[allow(clippy::too_many_arguments)]
     fn triangulate(
         &self,
         leaves: &[(Cell, CellBounds)],
+        plans: &[Plan],
         layout: &Layout,
         cache: &mut HashMap<(u64, u64), (Point, Point)>,
         magnitude: f64,
         max_triangles: usize,
         tolerance: f64,
     ) -> Result<Mesh, TessellationError> {
-        let degrees = (self.u().degree(), self.v().degree());
         let mut mesh = Mesh {
             vertices: Vec::new(),
             parameters: Vec::new(),
@@ -220,36 +234,19 @@ impl Surface {
                 })
         };
         let mut worst = 0.0f64;
-        for (cell, bounds) in leaves {
+        for ((cell, bounds), plan) in leaves.iter().zip(plans) {
             let boundary = layout.boundary(cell);
-            if boundary.len() == 4 {
-                let [a, b, c, d] = [boundary[0], boundary[1], boundary[2], boundary[3]]
-                    .map(|(u, v)| vertex(&mut mesh, u, v));
-                let p = |k: u32| mesh.vertices[k as usize];
-                if distance(p(a), p(c)) <= distance(p(b), p(d)) {
-                    mesh.triangles.extend([[a, b, c], [a, c, d]]);
-                } else {
-                    mesh.triangles.extend([[a, b, d], [b, c, d]]);
-                }
-                worst = worst.max(bounds.bilinear + bounds.twist / 4.0 + bounds.rounding);
-            } else {
+            let mut ring: Vec<u32> = boundary
+                .iter()
+                .map(|&(u, v)| vertex(&mut mesh, u, v))
+                .collect();
+            if plan.fan {
                 let (cu, cv) = centre(cell);
-                let middle = vertex(&mut mesh, cu, cv);
-                let mut gap = vertex_gap(cell, degrees, (cu, cv), mesh.vertices[middle as usize]);
-                let ring: Vec<u32> = boundary
-                    .iter()
-                    .map(|&(u, v)| {
-                        let k = vertex(&mut mesh, u, v);
-                        gap = gap.max(vertex_gap(cell, degrees, (u, v), mesh.vertices[k as usize]));
-                        k
-                    })
-                    .collect();
-                for k in 0..ring.len() {
-                    mesh.triangles
-                        .push([middle, ring[k], ring[(k + 1) % ring.len()]]);
-                }
-                worst = worst.max(bounds.bilinear + bounds.twist / 16.0 + gap + bounds.rounding);
+                ring.push(vertex(&mut mesh, cu, cv));
             }
+            mesh.triangles
+                .extend(plan.triangles.iter().map(|t| t.map(|k| ring[k])));
+            worst = worst.max(plan.bound + bounds.rounding);
             if mesh.triangles.len() > max_triangles {
                 return Err(TessellationError::TooManyTriangles {
                     tolerance,
@@ -261,6 +258,65 @@ impl Surface {
         mesh.max_error = worst + ROUNDING_MARGIN * magnitude;
         Ok(mesh)
     }
+}
+
+/// The bound a cell must meet to be a leaf (module docs), rounding included: its two-triangle
+/// bound (the triangles' own bounds computed only when the cell's `ε₁ + |T| / 4` exceeds
+/// `target`), and when `strict` the fan's bound whatever its neighbours as well.
+fn leaf_bound(
+    cell: &Cell,
+    bounds: &CellBounds,
+    degrees: (usize, usize),
+    rational: bool,
+    target: f64,
+    strict: bool,
+) -> f64 {
+    let mut bound = bounds.bilinear + bounds.twist / 4.0;
+    if bound + bounds.rounding > target {
+        bound = bound.min(quad_plan(cell, bounds, degrees, rational).1);
+    }
+    if strict {
+        bound = bound.max(2.0 * bounds.bilinear + bounds.twist / 16.0);
+    }
+    bound + bounds.rounding
+}
+
+/// The cut of a cell over the tolerance into the fewest equal parts, `k <= 8`, along `u` or
+/// `v` (`in_u` first on a tie), after which every part is a leaf (`(bound, target)`: the
+/// cell's bound and the tolerance; only `k >= √(bound / target)` are tried, as a cut into `k`
+/// parts divides a bound by `k²` at most), with the parts' bounds; `None` when there is none.
+fn fitting_cut(
+    cell: &Cell,
+    degrees: (usize, usize),
+    rational: bool,
+    (bound, target): (f64, f64),
+    in_u: bool,
+    strict: bool,
+) -> Option<Vec<(Cell, CellBounds)>> {
+    let least = (bound / target).sqrt().ceil();
+    if !least.is_finite() || least > MAX_PARTS as f64 {
+        return None;
+    }
+    for parts in (least as usize).max(2)..=MAX_PARTS {
+        for direction in [in_u, !in_u] {
+            let children = cell.split(degrees, direction, parts);
+            let mut fitted = Vec::with_capacity(parts);
+            for child in children {
+                if !(child.u.0 < child.u.1 && child.v.0 < child.v.1) {
+                    break;
+                }
+                let bounds = child.bounds(degrees, rational);
+                if leaf_bound(&child, &bounds, degrees, rational, target, strict) > target {
+                    break;
+                }
+                fitted.push((child, bounds));
+            }
+            if fitted.len() == parts {
+                return Some(fitted);
+            }
+        }
+    }
+    None
 }
 
 /// Into how many parts a cell whose bound is `bound` is cut (module docs).
