@@ -422,6 +422,83 @@ async fn a_surface_point_dragged_in_3d_lands_on_its_target_esc_cancels_and_undo_
     browser.close().await;
 }
 
+#[tokio::test]
+async fn a_drag_on_a_large_surface_solves_its_local_piece_as_the_whole_surface_would() {
+    let app = spawn_app().await;
+    let browser = Browser::start().await;
+    let page = Page::open(&browser.client, &app.address).await;
+    let surface = waved_surface(20);
+    paste_object(&page, "surface", &surface).await;
+    let at = pixel_of(&page, &surface_point(&app, &surface, [0.52, 0.47]).await).await;
+    page.drag(at, &path(at, (at.0 + 30, at.1 - 25), 5)).await;
+    space_settled(&page).await;
+    let commit = last_commit(&page).await;
+    let piece = page
+        .run("return window.knotshapeSpace.lastPiece();", vec![])
+        .await;
+    // A bicubic's piece: 3p + 3 = 12 rows and columns around the span, not the 20.
+    let rows = floats(&piece["rows"]);
+    let columns = floats(&piece["columns"]);
+    assert!(
+        rows[1] - rows[0] < 19.0 && columns[1] - columns[0] < 19.0,
+        "{piece}"
+    );
+    // The whole surface solved by the service for the same pick and target: its best
+    // solution is the page's committed edit.
+    let (status, whole) = app
+        .post_json(
+            "/v1/surfaces/shape/solve",
+            &json!({"surface": surface, "parameter": commit["parameter"], "target": commit["target"],
+                    "methods": ["knots", "control_points"], "keep_domain": true}),
+        )
+        .await;
+    assert_eq!(status, 200, "{whole}");
+    let best = &whole["solutions"][0];
+    assert_eq!(best["method"], commit["solution"]["method"], "{best}");
+    let committed = shapes(&page).await[0].clone();
+    let field = if best["method"] == "control_points" {
+        "control_points"
+    } else {
+        "knots_u"
+    };
+    let flat = |value: &Value| -> Vec<f64> {
+        let mut out = Vec::new();
+        let mut stack = vec![value.clone()];
+        while let Some(item) = stack.pop() {
+            match item {
+                Value::Array(items) => stack.extend(items.into_iter().rev()),
+                Value::Number(number) => out.push(number.as_f64().unwrap()),
+                _ => {}
+            }
+        }
+        out
+    };
+    let (page_values, service_values) = (flat(&committed[field]), flat(&best[field]));
+    assert_eq!(page_values.len(), service_values.len());
+    for (a, b) in page_values.iter().zip(&service_values) {
+        assert!(
+            (a - b).abs() <= 1e-12 * (1.0 + b.abs()),
+            "{field}: {a} vs {b}"
+        );
+    }
+    if field == "control_points" {
+        let knots: Vec<f64> = flat(&committed["knots_v"]);
+        assert_eq!(knots, flat(&surface["knots_v"]));
+    }
+    let reached = surface_point(
+        &app,
+        &committed,
+        [
+            commit["parameter"][0].as_f64().unwrap(),
+            commit["parameter"][1].as_f64().unwrap(),
+        ],
+    )
+    .await;
+    assert!(distance(&reached, &floats(&commit["target"])) <= 1e-9 * 20.0);
+    assert_eq!(page.script_errors().await, Vec::<String>::new());
+    browser.close().await;
+}
+
 /// The real-model data of `tests/data/<name>` (gzipped JSON).
 fn real_data(name: &str) -> Value {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))

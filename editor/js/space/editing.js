@@ -9,7 +9,7 @@
 
 import * as api from "../api.js";
 import { buildGroup, boxOf, COLOURS, marker, moveMarker, polesOf, previewShape, regionsGroup } from "./objects.js";
-import { plainCurve, plainSurface } from "./nurbs.js";
+import { plainCurve, plainSurface, surfacePiece, withPiece } from "./nurbs.js";
 
 /** The methods offered per kind of object (the API's names) and which are on at first. */
 export const SPACE_METHODS = {
@@ -296,10 +296,12 @@ export function createEditor(view, notify) {
       drag.parameter = refined.parameter;
       drag.point = refined.point;
       drag.normal = refined.normal;
+      // A surface's drag sends only the piece the move can change (nurbs.js surfacePiece).
+      drag.piece = item.kind === "surface" && item.plain ? surfacePiece(item.plain, refined.parameter) : null;
       drag.refined = true;
       editor.pick = { index: hit.index, parameter: refined.parameter, point: refined.point };
       showMarker(editor.markers.pick, refined.point);
-      fetchRegions(item, refined.parameter);
+      fetchRegions(item, refined.parameter, drag.piece?.shape ?? item.shape);
       pump(drag);
     });
   };
@@ -352,9 +354,10 @@ export function createEditor(view, notify) {
     const item = drag.item;
     const methods = editor.methods[item.kind];
     const sent = performance.now();
+    const sentShape = drag.piece ? drag.piece.shape : drag.committedShape;
     const answer = item.kind === "surface"
-      ? await api.surfaceSolve(drag.committedShape, drag.parameter, move.target, methods)
-      : await api.solve(drag.committedShape, drag.parameter, move.target, { methods });
+      ? await api.surfaceSolve(sentShape, drag.parameter, move.target, methods)
+      : await api.solve(sentShape, drag.parameter, move.target, { methods });
     const answered = performance.now();
     drag.inFlight = false;
     if (drag.cancelled) return;
@@ -365,7 +368,7 @@ export function createEditor(view, notify) {
       editor.solutions = solutions;
       if (solutions.length > 0) {
         drag.solution = solutions[0];
-        drag.shown = applied(drag.committedShape, item.kind, solutions[0]);
+        drag.shown = shapeAfter(drag, solutions[0]);
         drag.shownTarget = move.target;
         preview(item, drag.shown, solutions[0].affected_domain ?? null);
         const drawn = performance.now();
@@ -386,6 +389,12 @@ export function createEditor(view, notify) {
       notify();
     }
     pump(drag);
+  }
+
+  /** The whole object after `solution` (of the piece the drag sent, or of the whole). */
+  function shapeAfter(drag, solution) {
+    if (!drag.piece) return applied(drag.committedShape, drag.item.kind, solution);
+    return withPiece(drag.committedShape, drag.piece, applied(drag.piece.shape, "surface", solution));
   }
 
   function preview(item, shape, affected) {
@@ -413,6 +422,7 @@ export function createEditor(view, notify) {
       return;
     }
     editor.lastCommit = { index: editor.items.indexOf(drag.item), parameter: drag.parameter, target: drag.shownTarget, solution: drag.solution };
+    editor.lastPiece = drag.piece;
     commit(drag.item, drag.committedShape, drag.shown, describe(drag.solution, editor.solutions.length));
   }
 
@@ -461,7 +471,9 @@ export function createEditor(view, notify) {
     const last = editor.history[editor.history.length - 1];
     if (!solution || !last || editor.drag) return;
     const item = editor.items[last.index];
-    const after = applied(last.before, item.kind, solution);
+    const after = editor.lastPiece && item.kind === "surface"
+      ? withPiece(last.before, editor.lastPiece, applied(editor.lastPiece.shape, "surface", solution))
+      : applied(last.before, item.kind, solution);
     last.after = after;
     setShape(item, after, describe(solution, editor.solutions.length));
   };
@@ -492,12 +504,12 @@ export function createEditor(view, notify) {
     view.request();
   }
 
-  async function fetchRegions(item, parameter) {
+  async function fetchRegions(item, parameter, shape) {
     clearRegions();
     const methods = editor.methods[item.kind];
     const answer = item.kind === "surface"
-      ? await api.surfaceRegions(item.shape, parameter, methods, 3000)
-      : await api.regions(item.shape, parameter, item.size * 1e-3, { methods, budget: 3000 });
+      ? await api.surfaceRegions(shape, parameter, methods, 3000)
+      : await api.regions(shape, parameter, item.size * 1e-3, { methods, budget: 3000 });
     if (!answer.ok || editor.pick?.parameter !== parameter) return;
     editor.regions = regionsGroup(item.origin, answer.value, item.kind);
     editor.regions.visible = editor.showRegions;

@@ -204,6 +204,7 @@ export function setupSpace(elements) {
     selected: () => editor.selected,
     pick: () => editor.pick,
     lastCommit: () => editor.lastCommit ?? null,
+    lastPiece: () => (editor.lastPiece ? { rows: editor.lastPiece.rows, columns: editor.lastPiece.columns } : null),
     busy: () => editor.busy > 0 || editor.drag !== null,
     history: () => ({ undo: editor.history.length, redo: editor.future.length }),
     regions: () => editor.regions?.userData.counts ?? null,

@@ -146,3 +146,66 @@ export function distinctInDomain(knots, degree, count) {
   const high = knots[count];
   return [...new Set(knots.filter((k) => k >= low && k <= high))];
 }
+
+/** The index s of the knot span [k_s, k_s+1) holding `t` (full vector, degree <= s < count). */
+function spanOf(knots, degree, count, t) {
+  let s = degree;
+  while (s < count - 1 && knots[s + 1] <= t) s += 1;
+  return s;
+}
+
+/**
+ * The piece of a plain surface (plainSurface) that a drag at `(u, v)` can change, as the 2D
+ * editor cuts a curve (geometry.js `pieceAtParameter`), in each direction: every knot move
+ * at span k moves knots among k_{k−p+1} … k_{k+p}, which shape the surface on
+ * [k_{k−2p+1}, k_{k+2p}]; a control-point or weight move changes poles k−p … k. The piece
+ * keeps poles k−3p+1 … k+2p of each direction and their knots: on its own domain it is the
+ * same surface, and solving it gives the whole surface's solutions and deviations, with a
+ * fraction of the poles to send (225 of a 30 × 30 bicubic's 900).
+ * Returns `{ shape, rows: [i0, i1], columns: [j0, j1] }`.
+ */
+export function surfacePiece(plain, [u, v]) {
+  const range = (knots, degree, count, t) => {
+    const k = spanOf(knots, degree, count, t);
+    return [Math.max(0, k - 3 * degree + 1), Math.min(count - 1, k + 2 * degree)];
+  };
+  const nu = plain.control_points.length;
+  const nv = plain.control_points[0].length;
+  const [i0, i1] = range(plain.knots_u, plain.degree_u, nu, u);
+  const [j0, j1] = range(plain.knots_v, plain.degree_v, nv, v);
+  const shape = {
+    degree_u: plain.degree_u,
+    degree_v: plain.degree_v,
+    control_points: plain.control_points.slice(i0, i1 + 1).map((row) => row.slice(j0, j1 + 1)),
+    knots_u: plain.knots_u.slice(i0, i1 + plain.degree_u + 2),
+    knots_v: plain.knots_v.slice(j0, j1 + plain.degree_v + 2),
+  };
+  if (plain.weights) shape.weights = plain.weights.slice(i0, i1 + 1).map((row) => row.slice(j0, j1 + 1));
+  return { shape, rows: [i0, i1], columns: [j0, j1] };
+}
+
+/** The whole plain surface with `piece` (surfacePiece's, after an edit: `edited` its new
+ * shape) put back in place: its poles, weights and knots replace the ones it was cut from. */
+export function withPiece(plain, piece, edited) {
+  const [i0] = piece.rows;
+  const [j0] = piece.columns;
+  const control_points = plain.control_points.map((row) => row.slice());
+  edited.control_points.forEach((row, a) => row.forEach((p, b) => {
+    control_points[i0 + a][j0 + b] = p;
+  }));
+  const whole = { ...plain, control_points, knots_u: plain.knots_u.slice(), knots_v: plain.knots_v.slice() };
+  edited.knots_u.forEach((k, a) => {
+    whole.knots_u[i0 + a] = k;
+  });
+  edited.knots_v.forEach((k, b) => {
+    whole.knots_v[j0 + b] = k;
+  });
+  if (edited.weights) {
+    const weights = plain.weights ? plain.weights.map((row) => row.slice()) : plain.control_points.map((row) => row.map(() => 1));
+    edited.weights.forEach((row, a) => row.forEach((w, b) => {
+      weights[i0 + a][j0 + b] = w;
+    }));
+    whole.weights = weights;
+  }
+  return whole;
+}
