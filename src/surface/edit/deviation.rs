@@ -238,65 +238,107 @@ fn same_patch(
     })
 }
 
-/// Work arrays of [`patch_net`], sized for the degrees once per search.
-struct Blossoms {
-    rows: Vec<Lanes>,
-    column: Vec<Lanes>,
-    blossoms: Vec<Lanes>,
+/// The rows of a surface's patches blossomed along `v` over the search's `v` cells, each
+/// computed once per call and shared by every `u` cell above it (a row is pole row `i`,
+/// columns `b - q ..= b` of the cell's span `b`), and shared between the two surfaces where
+/// the row's poles and the `2q` knots around the span are the same (the rows a weight or a
+/// `u`-knot edit leaves alone).
+struct RowBlossoms<'a> {
+    surface: &'a Surface,
+    /// The `v` span of each `v` cell.
+    spans: Vec<usize>,
+    /// The `v` range of each `v` cell.
+    ranges: Vec<(f64, f64)>,
+    /// `lanes[(k · rows + i) (q + 1) + s]`.
+    lanes: Vec<Lanes>,
+    filled: Vec<bool>,
 }
 
-impl Blossoms {
-    fn new(p: usize, q: usize) -> Blossoms {
-        Blossoms {
-            rows: vec![[0.0; 4]; (p + 1) * (q + 1)],
-            column: vec![[0.0; 4]; p + 1],
-            blossoms: vec![[0.0; 4]; p + 1],
+impl<'a> RowBlossoms<'a> {
+    fn new(surface: &'a Surface, vs: &[f64]) -> RowBlossoms<'a> {
+        let ranges: Vec<(f64, f64)> = vs.windows(2).map(|v| (v[0], v[1])).collect();
+        let spans = ranges
+            .iter()
+            .map(|&(a, b)| surface.v().span(0.5 * (a + b)))
+            .collect();
+        let rows = surface.u().count() * ranges.len();
+        RowBlossoms {
+            surface,
+            spans,
+            lanes: vec![[0.0; 4]; rows * (surface.v().degree() + 1)],
+            filled: vec![false; rows],
+            ranges,
         }
     }
-}
 
-/// The homogeneous Bézier net `out[r (q + 1) + s]` of `surface` over `[u0, u1] × [v0, v1]`
-/// inside its span pair `(a, b)`: each row of the patch's poles blossomed along `v`, then each
-/// column of the result along `u` (as [`Surface::bezier_net`], with work arrays sized for the
-/// degrees).
-fn patch_net(
-    surface: &Surface,
-    (a, b): (usize, usize),
-    u: (f64, f64),
-    v: (f64, f64),
-    work: &mut Blossoms,
-    out: &mut [Lanes],
-) {
-    let (p, q) = (surface.u().degree(), surface.v().degree());
-    let n_v = surface.v().count();
-    let homogeneous = surface.homogeneous();
-    for r in 0..=p {
-        let first = (a - p + r) * n_v + b - q;
-        bezier_of_net(
-            q,
-            surface.v().knots(),
-            b,
-            &homogeneous[first..=first + q],
-            v.0,
-            v.1,
-            &mut work.rows[r * (q + 1)..(r + 1) * (q + 1)],
-        );
+    fn slot(&self, k: usize, i: usize) -> usize {
+        k * self.surface.u().count() + i
     }
-    for s in 0..=q {
-        for r in 0..=p {
-            work.column[r] = work.rows[r * (q + 1) + s];
+
+    /// The `2q` knots the patches of `v` cell `k` depend on.
+    fn window(&self, k: usize) -> &[f64] {
+        let (q, b) = (self.surface.v().degree(), self.spans[k]);
+        &self.surface.v().knots()[b + 1 - q..=b + q]
+    }
+
+    /// The homogeneous poles of row `i` acting on `v` cell `k`.
+    fn poles(&self, k: usize, i: usize) -> &[Lanes] {
+        let (q, b) = (self.surface.v().degree(), self.spans[k]);
+        let first = i * self.surface.v().count() + b - q;
+        &self.surface.homogeneous()[first..=first + q]
+    }
+
+    /// Row `i` over `v` cell `k`, blossomed, or copied from `other` when `other` has the same
+    /// row there.
+    fn fill(&mut self, k: usize, i: usize, other: Option<&mut RowBlossoms>) {
+        let slot = self.slot(k, i);
+        if self.filled[slot] {
+            return;
         }
-        bezier_of_net(
-            p,
-            surface.u().knots(),
-            a,
-            &work.column,
-            u.0,
-            u.1,
-            &mut work.blossoms,
-        );
-        for r in 0..=p {
-            out[r * (q + 1) + s] = work.blossoms[r];
+        let q = self.surface.v().degree();
+        let out = slot * (q + 1)..(slot + 1) * (q + 1);
+        let shared = other.filter(|o| {
+            i < o.surface.u().count()
+                && o.window(k) == self.window(k)
+                && o.poles(k, i) == self.poles(k, i)
+        });
+        match shared {
+            Some(o) => {
+                o.fill(k, i, None);
+                let from = o.slot(k, i) * (q + 1);
+                self.lanes[out].copy_from_slice(&o.lanes[from..from + q + 1]);
+            }
+            None => {
+                let (v0, v1) = self.ranges[k];
+                let first = i * self.surface.v().count() + self.spans[k] - q;
+                bezier_of_net(
+                    q,
+                    self.surface.v().knots(),
+                    self.spans[k],
+                    &self.surface.homogeneous()[first..=first + q],
+                    v0,
+                    v1,
+                    &mut self.lanes[out],
+                );
+            }
+        }
+        self.filled[slot] = true;
+    }
+
+    /// The homogeneous Bézier net `out[r (q + 1) + s]` over `[u0, u1]` × `v` cell `k` inside
+    /// the `u` span `a` (rows `a - p ..= a` filled): each column of the rows blossomed along
+    /// `u` (as [`Surface::bezier_net`] does per patch).
+    fn net(&self, k: usize, a: usize, u: (f64, f64), work: &mut [Lanes], out: &mut [Lanes]) {
+        let (p, q) = (self.surface.u().degree(), self.surface.v().degree());
+        let (column, blossoms) = work.split_at_mut(p + 1);
+        for s in 0..=q {
+            for (r, point) in column.iter_mut().enumerate() {
+                *point = self.lanes[self.slot(k, a - p + r) * (q + 1) + s];
+            }
+            bezier_of_net(p, self.surface.u().knots(), a, column, u.0, u.1, blossoms);
+            for r in 0..=p {
+                out[r * (q + 1) + s] = blossoms[r];
+            }
         }
     }
 }
@@ -398,35 +440,25 @@ pub fn surface_max_deviation(old: &Surface, new: &Surface, rect: [(f64, f64); 2]
     let rational = old.is_rational() || new.is_rational();
     let len = (p + 1) * (q + 1);
     let (mut net_old, mut net_new) = (vec![[0.0; 4]; len], vec![[0.0; 4]; len]);
-    let mut work = Blossoms::new(p, q);
+    let mut work = vec![[0.0; 4]; 2 * (p + 1)];
+    let (mut rows_old, mut rows_new) = (RowBlossoms::new(old, &vs), RowBlossoms::new(new, &vs));
     let mut queue = BinaryHeap::new();
     let mut best = 0.0f64;
     for u in us.windows(2) {
         let mu = 0.5 * (u[0] + u[1]);
         let (a_old, a_new) = (old.u().span(mu), new.u().span(mu));
-        for v in vs.windows(2) {
-            let mv = 0.5 * (v[0] + v[1]);
-            let spans_old = (a_old, old.v().span(mv));
-            let spans_new = (a_new, new.v().span(mv));
+        for k in 0..vs.len() - 1 {
+            let spans_old = (a_old, rows_old.spans[k]);
+            let spans_new = (a_new, rows_new.spans[k]);
             if same_patch(old, new, spans_old, spans_new) {
                 continue;
             }
-            patch_net(
-                old,
-                spans_old,
-                (u[0], u[1]),
-                (v[0], v[1]),
-                &mut work,
-                &mut net_old,
-            );
-            patch_net(
-                new,
-                spans_new,
-                (u[0], u[1]),
-                (v[0], v[1]),
-                &mut work,
-                &mut net_new,
-            );
+            for r in 0..=p {
+                rows_old.fill(k, a_old - p + r, None);
+                rows_new.fill(k, a_new - p + r, Some(&mut rows_old));
+            }
+            rows_old.net(k, a_old, (u[0], u[1]), &mut work, &mut net_old);
+            rows_new.net(k, a_new, (u[0], u[1]), &mut work, &mut net_new);
             if net_old == net_new {
                 continue;
             }
