@@ -7,7 +7,8 @@
 //! (a knot edit moves them). A cell whose patch is the same in both surfaces (the same `2p`
 //! knots around its span in `u`, `2q` in `v`, and the same `(p + 1)(q + 1)` homogeneous poles)
 //! is skipped without any arithmetic. On the others, with local parameters
-//! `(σ, τ) ∈ [0, 1]²`, each surface's homogeneous Bézier net comes from blossoming, and the gap
+//! `(σ, τ) ∈ [0, 1]²`, each surface's homogeneous Bézier net comes from blossoming (the rows
+//! along `v` once per call, `RowBlossoms`, then the columns along `u`), and the gap
 //! `S_old − S_new` is one vector rational Bézier patch `G / W`:
 //!
 //! * both polynomial: `G = B_old − B_new`, `W = 1` (degrees `(p, q)`);
