@@ -98,30 +98,32 @@ impl GapPatch {
             .fold(0.0f64, f64::max)
     }
 
-    /// The largest change of `|g_k|² / w_k²` between neighbours along `σ` (`in_u`) or `τ`,
-    /// times the degree: how much halving in that direction can tighten the bound.
-    fn variation(&self, in_u: bool) -> f64 {
+    /// Whether to halve along `σ` rather than `τ`: the direction with the larger change of
+    /// `r_k = |g_k|² / w_k²` between neighbours, times its degree (how much halving in that
+    /// direction can tighten the bound); the ratios computed once.
+    fn split_in_u(&self) -> bool {
         let (m, n) = (self.m, self.n);
-        let r = |k: usize| {
-            let r = ratio(&self.c[k]);
-            if r.is_finite() { r } else { f64::MAX / 4.0 }
-        };
-        let mut largest = 0.0f64;
-        if in_u {
-            for i in 0..m {
-                for j in 0..=n {
-                    largest = largest.max((r((i + 1) * (n + 1) + j) - r(i * (n + 1) + j)).abs());
+        let r: Vec<f64> = self
+            .c
+            .iter()
+            .map(|h| {
+                let r = ratio(h);
+                if r.is_finite() { r } else { f64::MAX / 4.0 }
+            })
+            .collect();
+        let (mut along_u, mut along_v) = (0.0f64, 0.0f64);
+        for i in 0..=m {
+            for j in 0..=n {
+                let here = r[i * (n + 1) + j];
+                if i < m {
+                    along_u = along_u.max((r[(i + 1) * (n + 1) + j] - here).abs());
+                }
+                if j < n {
+                    along_v = along_v.max((r[i * (n + 1) + j + 1] - here).abs());
                 }
             }
-            largest * m as f64
-        } else {
-            for i in 0..=m {
-                for j in 0..n {
-                    largest = largest.max((r(i * (n + 1) + j + 1) - r(i * (n + 1) + j)).abs());
-                }
-            }
-            largest * n as f64
         }
+        along_u * m as f64 >= along_v * n as f64
     }
 
     /// The halves at `σ = 1/2` (`in_u`) or `τ = 1/2`, each again on `[0, 1]²`.
@@ -481,7 +483,7 @@ pub fn surface_max_deviation(old: &Surface, new: &Surface, rect: [(f64, f64); 2]
             return cell.upper.max(bound).sqrt();
         }
         halvings += 1;
-        let in_u = cell.patch.variation(true) >= cell.patch.variation(false);
+        let in_u = cell.patch.split_in_u();
         let (low, high) = cell.patch.halves(in_u);
         for half in [low, high] {
             best = best.max(half.corner_value());
