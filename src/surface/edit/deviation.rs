@@ -22,8 +22,10 @@
 //! convex hull bound*; `+∞` when some `w_k <= 0`). The corner coefficients are corner values
 //! and bound the maximum from below. The cells wait in a queue by their bound; the first is
 //! either below `M = best (1 + SURFACE_DEVIATION_RELATIVE_TOLERANCE)` (then so is every other,
-//! and the search ends) or halved (de Casteljau on all four lanes at once, in the direction
-//! where `|g_k|² / w_k²` changes most), its new corners raising `best`. The answer is
+//! and the search ends) or split (de Casteljau on all four lanes at once, in the direction
+//! where `|g_k|² / w_k²` changes most, at the Greville abscissa of the largest ratio clamped
+//! to `[1/4, 3/4]`: the likely maximum then lies near a corner of both parts), its new
+//! corners raising `best`. Where a cell is split never changes what is certified. The answer is
 //! `sqrt(M)`: never below the true maximum, and within the tolerance of a distance the
 //! surfaces really have. Near a maximum the points `g_k / w_k` of a cell of width `h` lie
 //! within `O(h²)` of the patch, so the bound tightens like the squared form's did. A search
@@ -101,7 +103,7 @@ impl GapPatch {
     /// Whether to halve along `σ` rather than `τ`: the direction with the larger change of
     /// `r_k = |g_k|² / w_k²` between neighbours, times its degree (how much halving in that
     /// direction can tighten the bound); the ratios computed once.
-    fn split_in_u(&self) -> bool {
+    fn split_in_u(&self) -> (bool, f64) {
         let (m, n) = (self.m, self.n);
         let r: Vec<f64> = self
             .c
@@ -112,9 +114,13 @@ impl GapPatch {
             })
             .collect();
         let (mut along_u, mut along_v) = (0.0f64, 0.0f64);
+        let mut top = 0;
         for i in 0..=m {
             for j in 0..=n {
                 let here = r[i * (n + 1) + j];
+                if here > r[top] {
+                    top = i * (n + 1) + j;
+                }
                 if i < m {
                     along_u = along_u.max((r[(i + 1) * (n + 1) + j] - here).abs());
                 }
@@ -123,11 +129,20 @@ impl GapPatch {
                 }
             }
         }
-        along_u * m as f64 >= along_v * n as f64
+        let in_u = along_u * m as f64 >= along_v * n as f64;
+        // At the Greville abscissa of the largest ratio (where the maximum likely is), kept
+        // off the ends: the maximum then sits near a corner of both parts, whose corner
+        // values raise `best` at once.
+        let at = if in_u {
+            (top / (n + 1)) as f64 / m as f64
+        } else {
+            (top % (n + 1)) as f64 / n as f64
+        };
+        (in_u, at.clamp(0.25, 0.75))
     }
 
-    /// The halves at `σ = 1/2` (`in_u`) or `τ = 1/2`, each again on `[0, 1]²`.
-    pub(crate) fn halves(&self, in_u: bool) -> (GapPatch, GapPatch) {
+    /// The parts `[0, t]` and `[t, 1]` along `σ` (`in_u`) or `τ`, each again on `[0, 1]²`.
+    pub(crate) fn split(&self, in_u: bool, t: f64) -> (GapPatch, GapPatch) {
         let (m, n) = (self.m, self.n);
         let mut left = self.clone();
         let mut right = self.clone();
@@ -142,14 +157,14 @@ impl GapPatch {
             for (k, value) in line.iter_mut().enumerate().take(len) {
                 *value = self.c[at(k)];
             }
-            // De Casteljau at 1/2: level `l` gives the left half's point `l` (its first) and
-            // the right half's point `len - 1 - l` (its last).
+            // De Casteljau at t: level `l` gives the left part's point `l` (its first) and
+            // the right part's point `len - 1 - l` (its last).
             for level in 0..len {
                 left.c[at(level)] = line[0];
                 right.c[at(len - 1 - level)] = line[len - 1 - level];
                 for k in 0..len - 1 - level {
                     let (a, b) = (line[k], line[k + 1]);
-                    line[k] = std::array::from_fn(|c| 0.5 * (a[c] + b[c]));
+                    line[k] = std::array::from_fn(|c| a[c] + t * (b[c] - a[c]));
                 }
             }
         }
@@ -483,8 +498,8 @@ pub fn surface_max_deviation(old: &Surface, new: &Surface, rect: [(f64, f64); 2]
             return cell.upper.max(bound).sqrt();
         }
         halvings += 1;
-        let in_u = cell.patch.split_in_u();
-        let (low, high) = cell.patch.halves(in_u);
+        let (in_u, at) = cell.patch.split_in_u();
+        let (low, high) = cell.patch.split(in_u, at);
         for half in [low, high] {
             best = best.max(half.corner_value());
             queue.push(Cell::new(half, cell.depth + 1));
@@ -541,15 +556,20 @@ mod tests {
             prop_assert!(patch.corner_value() <= largest * (1.0 + 1e-12) + 1e-300);
         }
 
-        /// The halves are the patch on each half.
+        /// The parts are the patch on each part.
         #[test]
-        fn halves_agree_with_the_whole(patch in patch(), s in 0.0f64..1.0, t in 0.0f64..1.0) {
+        fn parts_agree_with_the_whole(
+            patch in patch(),
+            s in 0.0f64..1.0,
+            t in 0.0f64..1.0,
+            at in 0.25f64..0.75,
+        ) {
             for in_u in [true, false] {
-                let (low, high) = patch.halves(in_u);
+                let (low, high) = patch.split(in_u, at);
                 let (whole_low, whole_high) = if in_u {
-                    (patch.value(s / 2.0, t), patch.value(0.5 + s / 2.0, t))
+                    (patch.value(at * s, t), patch.value(at + (1.0 - at) * s, t))
                 } else {
-                    (patch.value(s, t / 2.0), patch.value(s, 0.5 + t / 2.0))
+                    (patch.value(s, at * t), patch.value(s, at + (1.0 - at) * t))
                 };
                 for (a, b) in [(low.value(s, t), whole_low), (high.value(s, t), whole_high)] {
                     for c in 0..4 {
