@@ -3,7 +3,10 @@
 //! surface, near enough for the thin tetrahedra of a nearly flat net): the control-point move alone, the three weights alone, and both in one edit,
 //! each solution with its certified deviation; a control-point move under a pinned point and
 //! pinned partials and the kept boundary; and, in the same run, today's curve edit with all
-//! three methods on the worked example (benches/support/edit_cases.rs) for comparison.
+//! three methods on the worked example (benches/support/edit_cases.rs) for comparison. All
+//! three surface methods run on the same surface (where the knots find no solution) and on
+//! the knot benchmark's wavy bicubic (benches/surface_knots.rs) for a target the knots reach
+//! (12 mixed solutions, each with its certified deviation).
 //! `cargo bench --bench surface_edit`.
 #![allow(clippy::unwrap_used)]
 
@@ -17,6 +20,7 @@ use knotshape::shape::{
     ConstraintSet, EditContext, EditOptions, FixedPoles, PoleVariables, ShapeQuery, edit,
 };
 use knotshape::spline::KnotForm;
+use knotshape::surface::edit::knots::{SurfaceKnotFamily, solve_surface_knots};
 use knotshape::surface::edit::{
     FixedNet, SurfaceConstraintSpec, SurfaceConstraints, SurfaceEditOptions, SurfaceEditRequest,
     SurfaceMethodKind, surface_edit, weight_moves, weight_triples,
@@ -49,6 +53,77 @@ fn bicubic() -> Surface {
     .unwrap()
 }
 
+/// The bicubic of benches/surface_knots.rs: 20 × 20 poles over `[0, 19]²` with a wavy height,
+/// uneven clamped knots in both directions.
+fn wavy_bicubic() -> Surface {
+    let n = 20;
+    let poles: Vec<Vec<[f64; 3]>> = (0..n)
+        .map(|i| {
+            (0..n)
+                .map(|j| {
+                    let (x, y) = (i as f64, j as f64);
+                    [
+                        x,
+                        y,
+                        1.5 * (0.45 * x).sin() * (0.35 * y).cos() + 0.1 * (1.3 * x + y).sin(),
+                    ]
+                })
+                .collect()
+        })
+        .collect();
+    let knots = |shift: f64| {
+        let mut k = vec![0.0; 4];
+        let interior = n - 4;
+        k.extend((1..=interior).map(|i| {
+            let s = i as f64 / (interior + 1) as f64;
+            s + shift * (std::f64::consts::PI * 3.0 * s).sin() / (interior + 1) as f64
+        }));
+        k.extend([1.0; 4]);
+        k
+    };
+    let (ku, kv) = (knots(0.3), knots(-0.25));
+    Surface::from_knot_forms(
+        (3, 3),
+        &poles,
+        (KnotForm::Flat(&ku), KnotForm::Flat(&kv)),
+        None::<&[Vec<f64>]>,
+        &SurfaceLimits::default(),
+    )
+    .unwrap()
+}
+
+/// The target of benches/surface_knots.rs: off the tangent plane along the normal and
+/// across, shrunk by 0.7 from `0.05` until a mixed knot move reaches it; and that scale.
+fn knots_target(surface: &Surface, (u, v): (f64, f64)) -> ([f64; 3], f64) {
+    let point = surface.point(u, v);
+    let partials = surface.partials(u, v, 1);
+    let (du, dv) = (partials.du(), partials.dv());
+    let normal = [
+        du[1] * dv[2] - du[2] * dv[1],
+        du[2] * dv[0] - du[0] * dv[2],
+        du[0] * dv[1] - du[1] * dv[0],
+    ];
+    let length = (normal[0].powi(2) + normal[1].powi(2) + normal[2].powi(2)).sqrt();
+    let mut scale = 0.05;
+    loop {
+        let target: [f64; 3] = std::array::from_fn(|k| {
+            point[k] + scale * (normal[k] / length + 0.3 * du[k] / du[0].abs().max(1.0))
+        });
+        let found = solve_surface_knots(surface, u, v, target, true);
+        if found
+            .iter()
+            .any(|s| matches!(s.family, SurfaceKnotFamily::Mixed { .. }))
+        {
+            return (target, scale);
+        }
+        scale *= 0.7;
+        assert!(
+            scale > 1e-4,
+            "no mixed move reaches a target along the offset"
+        );
+    }
+}
+
 fn bench_surface_edit(c: &mut Criterion) {
     let surface = bicubic();
     let (u, v) = (0.43, 0.57);
@@ -69,6 +144,13 @@ fn bench_surface_edit(c: &mut Criterion) {
     const WEIGHTS: &[SurfaceMethodKind] = &[SurfaceMethodKind::Weights];
     const BOTH: &[SurfaceMethodKind] =
         &[SurfaceMethodKind::ControlPoints, SurfaceMethodKind::Weights];
+    // All three methods: the knots reach no solution for this target (the net is nearly
+    // flat and the target close), so they add their search only.
+    const ALL_THREE: &[SurfaceMethodKind] = &[
+        SurfaceMethodKind::Knots,
+        SurfaceMethodKind::ControlPoints,
+        SurfaceMethodKind::Weights,
+    ];
     let outcome = surface_edit(&request(BOTH));
     for kind in BOTH {
         assert!(
@@ -81,6 +163,7 @@ fn bench_surface_edit(c: &mut Criterion) {
         ("control_points_20x20", POLES),
         ("weights_20x20", WEIGHTS),
         ("control_points_and_weights_20x20", BOTH),
+        ("all_three_methods_20x20", ALL_THREE),
     ] {
         let request = request(methods);
         group.bench_function(name, |b| b.iter(|| surface_edit(black_box(&request))));
@@ -91,6 +174,43 @@ fn bench_surface_edit(c: &mut Criterion) {
             let triples = weight_triples(&surface, u, v).unwrap();
             weight_moves(&surface, (u, v), black_box(target), &triples, &none, &free)
         })
+    });
+    // All three methods on the knot benchmark's bicubic (benches/surface_knots.rs: wavy
+    // height, uneven knots) for a target off the tangent plane that the knots reach.
+    let wavy = wavy_bicubic();
+    let (wavy_target, scale) = knots_target(&wavy, (u, v));
+    let wavy_free = FixedNet::none(&wavy);
+    let all_three = SurfaceEditRequest {
+        surface: &wavy,
+        parameter: (u, v),
+        target: wavy_target,
+        methods: ALL_THREE,
+        constraints: &none,
+        fixed: &wavy_free,
+        options: SurfaceEditOptions {
+            nearest: false,
+            keep_domain: true,
+        },
+    };
+    let outcome = surface_edit(&all_three);
+    let counts: Vec<String> = ALL_THREE
+        .iter()
+        .map(|kind| {
+            let count = outcome
+                .solutions
+                .iter()
+                .filter(|s| s.detail.method() == *kind)
+                .count();
+            assert!(count > 0, "{kind:?} reaches the wavy target");
+            format!("{} {count}", kind.name())
+        })
+        .collect();
+    eprintln!(
+        "all three methods, wavy bicubic 20 × 20, target offset {scale:.4}: {}",
+        counts.join(", ")
+    );
+    group.bench_function("all_three_methods_wavy_20x20", |b| {
+        b.iter(|| surface_edit(black_box(&all_three)))
     });
     // A pinned point, pinned first partials and the kept boundary.
     let pinned = [0.43, 0.57];

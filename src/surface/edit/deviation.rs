@@ -4,36 +4,45 @@
 //!
 //! The distinct knots of both surfaces in `u` (and in `v`) cut the compared rectangle into
 //! cells on which both surfaces are single (rational) polynomial patches, whatever their knots
-//! (a knot edit moves them). On a cell, with local parameters `(σ, τ) ∈ [0, 1]²`, each
-//! surface's homogeneous Bézier net comes from blossoming ([`Surface::bezier_net`]), and the
-//! squared gap is a ratio `N / D` of tensor-product Bernstein polynomials:
+//! (a knot edit moves them). A cell whose patch is the same in both surfaces (the same `2p`
+//! knots around its span in `u`, `2q` in `v`, and the same `(p + 1)(q + 1)` homogeneous poles)
+//! is skipped without any arithmetic. On the others, with local parameters
+//! `(σ, τ) ∈ [0, 1]²`, each surface's homogeneous Bézier net comes from blossoming (the rows
+//! along `v` once per call, `RowBlossoms`, then the columns along `u`), and the gap
+//! `S_old − S_new` is one vector rational Bézier patch `G / W`:
 //!
-//! * both polynomial: `N = Σ_c (B_old - B_new)_c²` (degrees `(2p, 2q)`), `D = 1`; with equal
-//!   knots the difference net is blossomed directly (blossoming is linear), so unchanged
-//!   patches give exactly zero;
-//! * rational (either), homogeneous `(X, W)`: `N = |X_old W_new - X_new W_old|²` and
-//!   `D = (W_old W_new)²` (degrees `(4p, 4q)`, `D > 0`).
+//! * both polynomial: `G = B_old − B_new`, `W = 1` (degrees `(p, q)`);
+//! * rational (either), homogeneous `(X, W)`: `G = X_old W_new − X_new W_old` and
+//!   `W = W_old W_new` (degrees `(2p, 2q)`, Bernstein products; every `w_k > 0` for positive
+//!   weights).
 //!
-//! A Bernstein polynomial lies within the range of its coefficients and its corner
-//! coefficients are its corner values. So when every coefficient of `N − M D` is `<= 0`, the
-//! squared gap is at most `M` on the cell, and the corner values bound the maximum from
-//! below. The cells wait in a queue by `max N / min D`; the first is either proven below
-//! `M = best (1 + SURFACE_DEVIATION_RELATIVE_TOLERANCE)` and dropped, or halved (de Casteljau,
-//! in the direction where its coefficients change most), its new corners raising `best`. When
-//! the queue is empty the answer is `sqrt(M)`: never below the true maximum, and within the
-//! tolerance of a distance the surfaces really have. A search that runs out of its budget
-//! ([`MAX_CELLS`] halvings) answers the largest `max N / min D` left, still an upper bound.
-//! Gaps below `1e-13` of the nets' size are rounding and not refined. A rational cell is first
-//! bounded quickly by its degree-`(2p, 2q)` gaps ([`QuickCell`]) and squared only when that
-//! bound does not already settle it.
+//! With Bernstein coefficients `(g_k, w_k)`, all `w_k > 0`, `G / W = Σ_k λ_k (g_k / w_k)` with
+//! `λ_k = B_k w_k / Σ_j B_j w_j >= 0` summing to one: the gap lies in the convex hull of the
+//! points `g_k / w_k`, so `|G / W|² <= max_k |g_k|² / w_k²` on the whole cell (the *rational
+//! convex hull bound*; `+∞` when some `w_k <= 0`). The corner coefficients are corner values
+//! and bound the maximum from below. The cells wait in a queue by their bound; the first is
+//! either below `M = best (1 + SURFACE_DEVIATION_RELATIVE_TOLERANCE)` (then so is every other,
+//! and the search ends) or split (de Casteljau on all four lanes at once, in the direction
+//! where `|g_k|² / w_k²` changes most, at the Greville abscissa of the largest ratio clamped
+//! to `[1/4, 3/4]`: the likely maximum then lies near a corner of both parts), its new
+//! corners raising `best`. Where a cell is split never changes what is certified. The answer is
+//! `sqrt(M)`: never below the true maximum, and within the tolerance of a distance the
+//! surfaces really have. Near a maximum the points `g_k / w_k` of a cell of width `h` lie
+//! within `O(h²)` of the patch, so the bound tightens like the squared form's did. A search
+//! that runs out of its budget ([`MAX_CELLS`] halvings) answers the largest bound left, still
+//! an upper bound. Gaps below `1e-13` of the nets' size are rounding and not refined.
+//!
+//! The earlier form squared the gap (`N = |G|²`, `D = W²`, degrees `(4p, 4q)` for rational
+//! cells) and tested the coefficients of `N − M D`; the hull bound needs neither the squares
+//! nor the quadrupled degree (docs/performance.md has the measured difference).
 
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 
 use super::constraints::surface_edit_size;
-use crate::spline::bernstein::{BINOMIAL, halve};
+use crate::spline::bernstein::BINOMIAL;
+use crate::spline::bezier_of_net;
 use crate::surface::Surface;
-use crate::surface::patches::PatchRect;
 
 /// Relative precision of the squared deviation: when the search converges, the answer `d`
 /// satisfies `d² <= (1 + SURFACE_DEVIATION_RELATIVE_TOLERANCE) · best²` for a squared distance
@@ -50,136 +59,148 @@ const ZERO_GAP: f64 = 1e-13;
 /// Halvings of one cell at most.
 const MAX_DEPTH: u32 = 60;
 
-/// A tensor-product Bernstein polynomial: degrees `(m, n)`, coefficients row by row.
-#[derive(Debug, Clone)]
-struct Poly {
-    m: usize,
-    n: usize,
-    c: Vec<f64>,
+/// One homogeneous coefficient: `(g_x, g_y, g_z, w)`.
+type Lanes = [f64; 4];
+
+/// `|g|² / w²`, `+∞` when `w <= 0`.
+fn ratio(h: &Lanes) -> f64 {
+    if h[3] > 0.0 {
+        (h[0] * h[0] + h[1] * h[1] + h[2] * h[2]) / (h[3] * h[3])
+    } else {
+        f64::INFINITY
+    }
 }
 
-impl Poly {
-    fn max(&self) -> f64 {
-        self.c.iter().fold(f64::NEG_INFINITY, |a, &b| a.max(b))
+/// The gap of a cell as a vector rational tensor-product Bézier patch `G / W` on `[0, 1]²`:
+/// degrees `(m, n)`, coefficients `(g, w)` row by row (`c[i (n + 1) + j]`, `i` along `σ`).
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct GapPatch {
+    m: usize,
+    n: usize,
+    c: Vec<Lanes>,
+}
+
+impl GapPatch {
+    /// The rational convex hull bound `max_k |g_k|² / w_k²` of `|G / W|²` on `[0, 1]²`
+    /// (module docs; `+∞` when some `w_k <= 0`).
+    pub(crate) fn hull_bound(&self) -> f64 {
+        self.c.iter().fold(0.0f64, |a, h| a.max(ratio(h)))
     }
 
-    fn min(&self) -> f64 {
-        self.c.iter().fold(f64::INFINITY, |a, &b| a.min(b))
-    }
-
-    /// The largest change between neighbouring coefficients along `σ` (`in_u`) or `τ`, times
-    /// the degree: how much halving in that direction can tighten the bound.
-    fn variation(&self, in_u: bool) -> f64 {
-        let (m, n) = (self.m, self.n);
-        let mut largest = 0.0f64;
-        if in_u {
-            for i in 0..m {
-                for j in 0..=n {
-                    largest = largest
-                        .max((self.c[(i + 1) * (n + 1) + j] - self.c[i * (n + 1) + j]).abs());
-                }
-            }
-            largest * m as f64
-        } else {
-            for i in 0..=m {
-                for j in 0..n {
-                    largest =
-                        largest.max((self.c[i * (n + 1) + j + 1] - self.c[i * (n + 1) + j]).abs());
-                }
-            }
-            largest * n as f64
-        }
-    }
-
-    /// The values at the four corners of `[0, 1]²`.
-    fn corners(&self) -> [f64; 4] {
+    /// The largest `|G / W|²` at the four corners (a corner with `w <= 0` counts 0): values
+    /// the patch has.
+    fn corner_value(&self) -> f64 {
         let w = self.n + 1;
-        [
-            self.c[0],
-            self.c[self.n],
-            self.c[self.m * w],
-            self.c[self.m * w + self.n],
-        ]
+        [0, self.n, self.m * w, self.m * w + self.n]
+            .iter()
+            .map(|&k| {
+                let r = ratio(&self.c[k]);
+                if r.is_finite() { r } else { 0.0 }
+            })
+            .fold(0.0f64, f64::max)
     }
 
-    /// `self · other` (degrees add), by convolution in the scaled basis
-    /// `C(m, i) C(n, j) b_ij`.
-    fn times(&self, other: &Poly) -> Poly {
-        let (m, n) = (self.m + other.m, self.n + other.n);
-        let scaled = |p: &Poly| -> Vec<f64> {
-            (0..=p.m)
-                .flat_map(|i| (0..=p.n).map(move |j| (i, j)))
-                .map(|(i, j)| p.c[i * (p.n + 1) + j] * BINOMIAL[p.m][i] * BINOMIAL[p.n][j])
-                .collect()
-        };
-        let (a, b) = (scaled(self), scaled(other));
-        let mut c = vec![0.0; (m + 1) * (n + 1)];
-        for i in 0..=self.m {
-            for j in 0..=self.n {
-                let x = a[i * (self.n + 1) + j];
-                if x == 0.0 {
-                    continue;
-                }
-                for k in 0..=other.m {
-                    let row = &b[k * (other.n + 1)..(k + 1) * (other.n + 1)];
-                    let out = &mut c[(i + k) * (n + 1) + j..(i + k) * (n + 1) + j + other.n + 1];
-                    for (o, y) in out.iter_mut().zip(row) {
-                        *o += x * y;
-                    }
-                }
-            }
-        }
+    /// Whether to halve along `σ` rather than `τ`: the direction with the larger change of
+    /// `r_k = |g_k|² / w_k²` between neighbours, times its degree (how much halving in that
+    /// direction can tighten the bound); the ratios computed once.
+    fn split_in_u(&self) -> (bool, f64) {
+        let (m, n) = (self.m, self.n);
+        let r: Vec<f64> = self
+            .c
+            .iter()
+            .map(|h| {
+                let r = ratio(h);
+                if r.is_finite() { r } else { f64::MAX / 4.0 }
+            })
+            .collect();
+        let (mut along_u, mut along_v) = (0.0f64, 0.0f64);
+        let mut top = 0;
         for i in 0..=m {
             for j in 0..=n {
-                c[i * (n + 1) + j] /= BINOMIAL[m][i] * BINOMIAL[n][j];
+                let here = r[i * (n + 1) + j];
+                if here > r[top] {
+                    top = i * (n + 1) + j;
+                }
+                if i < m {
+                    along_u = along_u.max((r[(i + 1) * (n + 1) + j] - here).abs());
+                }
+                if j < n {
+                    along_v = along_v.max((r[i * (n + 1) + j + 1] - here).abs());
+                }
             }
         }
-        Poly { m, n, c }
+        let in_u = along_u * m as f64 >= along_v * n as f64;
+        // At the Greville abscissa of the largest ratio (where the maximum likely is), kept
+        // off the ends: the maximum then sits near a corner of both parts, whose corner
+        // values raise `best` at once.
+        let at = if in_u {
+            (top / (n + 1)) as f64 / m as f64
+        } else {
+            (top % (n + 1)) as f64 / n as f64
+        };
+        (in_u, at.clamp(0.25, 0.75))
     }
 
-    fn add_assign(&mut self, other: &Poly, sign: f64) {
-        for (a, b) in self.c.iter_mut().zip(&other.c) {
-            *a += sign * b;
-        }
-    }
-
-    /// The halves at `σ = 1/2` (`in_u`) or `τ = 1/2`, each again on `[0, 1]²`.
-    fn halves(&self, in_u: bool) -> (Poly, Poly) {
+    /// The parts `[0, t]` and `[t, 1]` along `σ` (`in_u`) or `τ`, each again on `[0, 1]²`.
+    pub(crate) fn split(&self, in_u: bool, t: f64) -> (GapPatch, GapPatch) {
         let (m, n) = (self.m, self.n);
         let mut left = self.clone();
         let mut right = self.clone();
-        let len = if in_u { m + 1 } else { n + 1 };
-        let (mut line, mut low, mut high) = (vec![0.0; len], vec![0.0; len], vec![0.0; len]);
-        let lines = if in_u { n + 1 } else { m + 1 };
+        let (len, lines, stride, step) = if in_u {
+            (m + 1, n + 1, 1, n + 1)
+        } else {
+            (n + 1, m + 1, n + 1, 1)
+        };
+        let mut line = vec![[0.0; 4]; len];
         for o in 0..lines {
-            let at = |k: usize| {
-                if in_u {
-                    k * (n + 1) + o
-                } else {
-                    o * (n + 1) + k
-                }
-            };
-            for (k, value) in line.iter_mut().enumerate() {
+            let at = |k: usize| o * stride + k * step;
+            for (k, value) in line.iter_mut().enumerate().take(len) {
                 *value = self.c[at(k)];
             }
-            halve(&line, &mut low, &mut high);
-            for k in 0..len {
-                left.c[at(k)] = low[k];
-                right.c[at(k)] = high[k];
+            // De Casteljau at t: level `l` gives the left part's point `l` (its first) and
+            // the right part's point `len - 1 - l` (its last).
+            for level in 0..len {
+                left.c[at(level)] = line[0];
+                right.c[at(len - 1 - level)] = line[len - 1 - level];
+                for k in 0..len - 1 - level {
+                    let (a, b) = (line[k], line[k + 1]);
+                    line[k] = std::array::from_fn(|c| a[c] + t * (b[c] - a[c]));
+                }
             }
         }
         (left, right)
     }
+
+    /// `G / W` at `(σ, τ)` (de Casteljau in both directions), for tests.
+    #[cfg(test)]
+    fn value(&self, s: f64, t: f64) -> Lanes {
+        let (m, n) = (self.m, self.n);
+        let mut rows: Vec<Lanes> = (0..=m)
+            .map(|i| {
+                let mut line: Vec<Lanes> = self.c[i * (n + 1)..(i + 1) * (n + 1)].to_vec();
+                for level in 1..=n {
+                    for k in 0..=n - level {
+                        line[k] =
+                            std::array::from_fn(|c| (1.0 - t) * line[k][c] + t * line[k + 1][c]);
+                    }
+                }
+                line[0]
+            })
+            .collect();
+        for level in 1..=m {
+            for k in 0..=m - level {
+                rows[k] = std::array::from_fn(|c| (1.0 - s) * rows[k][c] + s * rows[k + 1][c]);
+            }
+        }
+        rows[0]
+    }
 }
 
-/// One cell of the search: the squared gap's numerator and (rational) denominator.
+/// One cell of the search.
 struct Cell {
     upper: f64,
-    numerator: Poly,
-    denominator: Option<Poly>,
+    patch: GapPatch,
     depth: u32,
-    /// A rational cell not yet squared (then `numerator` is empty).
-    quick: Option<Box<QuickCell>>,
 }
 
 impl PartialEq for Cell {
@@ -203,86 +224,199 @@ impl Ord for Cell {
 }
 
 impl Cell {
-    fn new(numerator: Poly, denominator: Option<Poly>, depth: u32) -> Cell {
-        let top = numerator.max().max(0.0);
-        let upper = match &denominator {
-            None => top,
-            Some(d) => {
-                let low = d.min();
-                if low > 0.0 { top / low } else { f64::INFINITY }
-            }
-        };
+    fn new(patch: GapPatch, depth: u32) -> Cell {
         Cell {
-            upper,
-            numerator,
-            denominator,
+            upper: patch.hull_bound(),
+            patch,
             depth,
-            quick: None,
+        }
+    }
+}
+
+/// Whether `old` on its span pair `(a, b)` and `new` on `(a2, b2)` are the same patch: the
+/// same knots `t_{a-p+1} ..= t_{a+p}` (and in `v`) and the same homogeneous poles
+/// `a-p ..= a` × `b-q ..= b`, all a patch depends on.
+fn same_patch(
+    old: &Surface,
+    new: &Surface,
+    (a, b): (usize, usize),
+    (a2, b2): (usize, usize),
+) -> bool {
+    let (p, q) = (old.u().degree(), old.v().degree());
+    if old.u().knots()[a + 1 - p..=a + p] != new.u().knots()[a2 + 1 - p..=a2 + p]
+        || old.v().knots()[b + 1 - q..=b + q] != new.v().knots()[b2 + 1 - q..=b2 + q]
+    {
+        return false;
+    }
+    let (n_old, n_new) = (old.v().count(), new.v().count());
+    let (h_old, h_new) = (old.homogeneous(), new.homogeneous());
+    (0..=p).all(|r| {
+        let (x, y) = ((a - p + r) * n_old + b - q, (a2 - p + r) * n_new + b2 - q);
+        h_old[x..=x + q] == h_new[y..=y + q]
+    })
+}
+
+/// The rows of a surface's patches blossomed along `v` over the search's `v` cells, each
+/// computed once per call and shared by every `u` cell above it (a row is pole row `i`,
+/// columns `b - q ..= b` of the cell's span `b`), and shared between the two surfaces where
+/// the row's poles and the `2q` knots around the span are the same (the rows a weight or a
+/// `u`-knot edit leaves alone).
+struct RowBlossoms<'a> {
+    surface: &'a Surface,
+    /// The `v` span of each `v` cell.
+    spans: Vec<usize>,
+    /// The `v` range of each `v` cell.
+    ranges: Vec<(f64, f64)>,
+    /// `lanes[(k · rows + i) (q + 1) + s]`.
+    lanes: Vec<Lanes>,
+    filled: Vec<bool>,
+}
+
+impl<'a> RowBlossoms<'a> {
+    fn new(surface: &'a Surface, vs: &[f64]) -> RowBlossoms<'a> {
+        let ranges: Vec<(f64, f64)> = vs.windows(2).map(|v| (v[0], v[1])).collect();
+        let spans = ranges
+            .iter()
+            .map(|&(a, b)| surface.v().span(0.5 * (a + b)))
+            .collect();
+        let rows = surface.u().count() * ranges.len();
+        RowBlossoms {
+            surface,
+            spans,
+            lanes: vec![[0.0; 4]; rows * (surface.v().degree() + 1)],
+            filled: vec![false; rows],
+            ranges,
         }
     }
 
-    /// Whether every coefficient of `N − bound · D` is `<= 0`, so that `N / D <= bound` on the
-    /// whole cell (a tighter test than `max N / min D` where `D` varies).
-    fn below(&self, bound: f64) -> bool {
-        match &self.denominator {
-            None => self.numerator.max() <= bound,
-            Some(d) => self
-                .numerator
-                .c
-                .iter()
-                .zip(&d.c)
-                .all(|(n, d)| n - bound * d <= 0.0),
-        }
+    fn slot(&self, k: usize, i: usize) -> usize {
+        k * self.surface.u().count() + i
     }
 
-    /// The largest squared gap at the cell's corners.
-    fn corner_value(&self) -> f64 {
-        let n = self.numerator.corners();
-        match &self.denominator {
-            None => n.iter().fold(0.0f64, |a, &b| a.max(b)),
-            Some(d) => {
-                let d = d.corners();
-                (0..4).fold(0.0f64, |a, k| a.max(n[k] / d[k]))
+    /// The `2q` knots the patches of `v` cell `k` depend on.
+    fn window(&self, k: usize) -> &[f64] {
+        let (q, b) = (self.surface.v().degree(), self.spans[k]);
+        &self.surface.v().knots()[b + 1 - q..=b + q]
+    }
+
+    /// The homogeneous poles of row `i` acting on `v` cell `k`.
+    fn poles(&self, k: usize, i: usize) -> &[Lanes] {
+        let (q, b) = (self.surface.v().degree(), self.spans[k]);
+        let first = i * self.surface.v().count() + b - q;
+        &self.surface.homogeneous()[first..=first + q]
+    }
+
+    /// Row `i` over `v` cell `k`, blossomed, or copied from `other` when `other` has the same
+    /// row there.
+    fn fill(&mut self, k: usize, i: usize, other: Option<&mut RowBlossoms>) {
+        let slot = self.slot(k, i);
+        if self.filled[slot] {
+            return;
+        }
+        let q = self.surface.v().degree();
+        let out = slot * (q + 1)..(slot + 1) * (q + 1);
+        let shared = other.filter(|o| {
+            i < o.surface.u().count()
+                && o.window(k) == self.window(k)
+                && o.poles(k, i) == self.poles(k, i)
+        });
+        match shared {
+            Some(o) => {
+                o.fill(k, i, None);
+                let from = o.slot(k, i) * (q + 1);
+                self.lanes[out].copy_from_slice(&o.lanes[from..from + q + 1]);
+            }
+            None => {
+                let (v0, v1) = self.ranges[k];
+                let first = i * self.surface.v().count() + self.spans[k] - q;
+                bezier_of_net(
+                    q,
+                    self.surface.v().knots(),
+                    self.spans[k],
+                    &self.surface.homogeneous()[first..=first + q],
+                    v0,
+                    v1,
+                    &mut self.lanes[out],
+                );
+            }
+        }
+        self.filled[slot] = true;
+    }
+
+    /// The homogeneous Bézier net `out[r (q + 1) + s]` over `[u0, u1]` × `v` cell `k` inside
+    /// the `u` span `a` (rows `a - p ..= a` filled): each column of the rows blossomed along
+    /// `u` (as [`Surface::bezier_net`] does per patch).
+    fn net(&self, k: usize, a: usize, u: (f64, f64), work: &mut [Lanes], out: &mut [Lanes]) {
+        let (p, q) = (self.surface.u().degree(), self.surface.v().degree());
+        let (column, blossoms) = work.split_at_mut(p + 1);
+        for s in 0..=q {
+            for (r, point) in column.iter_mut().enumerate() {
+                *point = self.lanes[self.slot(k, a - p + r) * (q + 1) + s];
+            }
+            bezier_of_net(p, self.surface.u().knots(), a, column, u.0, u.1, blossoms);
+            for r in 0..=p {
+                out[r * (q + 1) + s] = blossoms[r];
             }
         }
     }
 }
 
-/// A rational cell before its squared form: the gaps `G_c = X_c,old W_new − X_c,new W_old`
-/// and `W = W_old W_new` (degrees `(2p, 2q)`), with the quick upper bound
-/// `Σ_c max_k G_c,k² / (min_k W_k)²` of the squared gap `Σ_c G_c² / W²` and its corner values.
-struct QuickCell {
-    gaps: Vec<Poly>,
-    weight: Poly,
-    upper: f64,
-    corner_value: f64,
-}
-
-impl QuickCell {
-    fn new(gaps: Vec<Poly>, weight: Poly) -> QuickCell {
-        let low = weight.min();
-        let top: f64 = gaps
-            .iter()
-            .map(|g| g.c.iter().fold(0.0f64, |m, x| m.max(x.abs())).powi(2))
-            .sum();
-        let upper = if low > 0.0 {
-            top / (low * low)
-        } else {
-            f64::INFINITY
+/// The gap `G / W` of two homogeneous Bézier nets of degrees `(p, q)` (module docs): the
+/// difference at `(p, q)` when both weights are 1, else `G = X_old W_new − X_new W_old`,
+/// `W = W_old W_new` at `(2p, 2q)` by one Bernstein product in the scaled basis
+/// `C(p, i) C(q, j) b_ij` (the sum over all pairs of `x_old,ij w_new,kl − x_new,ij w_old,kl`
+/// into `(i + k, j + l)` equals `X_old W_new − X_new W_old`, the pairs being symmetric).
+pub(crate) fn gap_patch(
+    old: &[Lanes],
+    new: &[Lanes],
+    p: usize,
+    q: usize,
+    rational: bool,
+) -> GapPatch {
+    if !rational {
+        return GapPatch {
+            m: p,
+            n: q,
+            c: old
+                .iter()
+                .zip(new)
+                .map(|(a, b)| [a[0] - b[0], a[1] - b[1], a[2] - b[2], 1.0])
+                .collect(),
         };
-        let w = weight.corners();
-        let corners: Vec<[f64; 4]> = gaps.iter().map(Poly::corners).collect();
-        let corner_value = (0..4).fold(0.0f64, |m, k| {
-            let squared: f64 = corners.iter().map(|c| c[k] * c[k]).sum();
-            m.max(squared / (w[k] * w[k]))
-        });
-        QuickCell {
-            gaps,
-            weight,
-            upper,
-            corner_value,
+    }
+    let (m, n) = (2 * p, 2 * q);
+    let scaled = |net: &[Lanes]| -> Vec<Lanes> {
+        (0..=p)
+            .flat_map(|i| (0..=q).map(move |j| (i, j)))
+            .map(|(i, j)| {
+                let f = BINOMIAL[p][i] * BINOMIAL[q][j];
+                net[i * (q + 1) + j].map(|x| x * f)
+            })
+            .collect()
+    };
+    let (a, b) = (scaled(old), scaled(new));
+    let mut c = vec![[0.0; 4]; (m + 1) * (n + 1)];
+    for i in 0..=p {
+        for j in 0..=q {
+            let x = a[i * (q + 1) + j];
+            for k in 0..=p {
+                let out = &mut c[(i + k) * (n + 1) + j..(i + k) * (n + 1) + j + q + 1];
+                for (o, y) in out.iter_mut().zip(&b[k * (q + 1)..(k + 1) * (q + 1)]) {
+                    o[0] += x[0] * y[3] - y[0] * x[3];
+                    o[1] += x[1] * y[3] - y[1] * x[3];
+                    o[2] += x[2] * y[3] - y[2] * x[3];
+                    o[3] += x[3] * y[3];
+                }
+            }
         }
     }
+    for i in 0..=m {
+        for j in 0..=n {
+            let f = BINOMIAL[m][i] * BINOMIAL[n][j];
+            c[i * (n + 1) + j] = c[i * (n + 1) + j].map(|x| x / f);
+        }
+    }
+    GapPatch { m, n, c }
 }
 
 /// Largest `|S_old(u, v) - S_new(u, v)|` over `rect` intersected with both domains, certified
@@ -322,133 +456,53 @@ pub fn surface_max_deviation(old: &Surface, new: &Surface, rect: [(f64, f64); 2]
     let us = cuts(old.u().knots(), new.u().knots(), ranges[0]);
     let vs = cuts(old.v().knots(), new.v().knots(), ranges[1]);
     let rational = old.is_rational() || new.is_rational();
-    let same_knots = old.u().knots() == new.u().knots() && old.v().knots() == new.v().knots();
-    // Equal knots, both polynomial: the difference surface's own nets.
-    let difference = (!rational && same_knots).then(|| {
-        let points = old
-            .control_points()
-            .iter()
-            .zip(new.control_points())
-            .map(|(a, b)| [a[0] - b[0], a[1] - b[1], a[2] - b[2]])
-            .collect();
-        Surface::from_valid_parts(old.u().clone(), old.v().clone(), points, None)
-    });
     let len = (p + 1) * (q + 1);
     let (mut net_old, mut net_new) = (vec![[0.0; 4]; len], vec![[0.0; 4]; len]);
+    let mut work = vec![[0.0; 4]; 2 * (p + 1)];
+    let (mut rows_old, mut rows_new) = (RowBlossoms::new(old, &vs), RowBlossoms::new(new, &vs));
     let mut queue = BinaryHeap::new();
-    let mut quick_cells = Vec::new();
     let mut best = 0.0f64;
     for u in us.windows(2) {
-        for v in vs.windows(2) {
-            let (mu, mv) = (0.5 * (u[0] + u[1]), 0.5 * (v[0] + v[1]));
-            let rect_of = |surface: &Surface| PatchRect {
-                spans: (surface.u().span(mu), surface.v().span(mv)),
-                u: (u[0], u[1]),
-                v: (v[0], v[1]),
-            };
-            let cell = match &difference {
-                Some(difference) => {
-                    difference.bezier_net(&rect_of(difference), &mut net_old);
-                    if net_old.iter().all(|h| h[..3] == [0.0; 3]) {
-                        continue;
-                    }
-                    let coordinate = |c: usize| Poly {
-                        m: p,
-                        n: q,
-                        c: net_old.iter().map(|h| h[c]).collect(),
-                    };
-                    Cell::new(sum_of_squares((0..3).map(coordinate)), None, 0)
-                }
-                None => {
-                    old.bezier_net(&rect_of(old), &mut net_old);
-                    new.bezier_net(&rect_of(new), &mut net_new);
-                    if net_old == net_new {
-                        continue;
-                    }
-                    let lane = |net: &[[f64; 4]], c: usize| Poly {
-                        m: p,
-                        n: q,
-                        c: net.iter().map(|h| h[c]).collect(),
-                    };
-                    if rational {
-                        let (w_old, w_new) = (lane(&net_old, 3), lane(&net_new, 3));
-                        let gaps: Vec<Poly> = (0..3)
-                            .map(|c| {
-                                let mut gap = lane(&net_old, c).times(&w_new);
-                                gap.add_assign(&lane(&net_new, c).times(&w_old), -1.0);
-                                gap
-                            })
-                            .collect();
-                        let w = w_old.times(&w_new);
-                        let quick = QuickCell::new(gaps, w);
-                        best = best.max(quick.corner_value);
-                        quick_cells.push(quick);
-                        continue;
-                    } else {
-                        let gaps = (0..3).map(|c| {
-                            let mut gap = lane(&net_old, c);
-                            gap.add_assign(&lane(&net_new, c), -1.0);
-                            gap
-                        });
-                        Cell::new(sum_of_squares(gaps), None, 0)
-                    }
-                }
-            };
-            best = best.max(cell.corner_value());
-            queue.push(cell);
+        let mu = 0.5 * (u[0] + u[1]);
+        let (a_old, a_new) = (old.u().span(mu), new.u().span(mu));
+        for k in 0..vs.len() - 1 {
+            let spans_old = (a_old, rows_old.spans[k]);
+            let spans_new = (a_new, rows_new.spans[k]);
+            if same_patch(old, new, spans_old, spans_new) {
+                continue;
+            }
+            for r in 0..=p {
+                rows_old.fill(k, a_old - p + r, None);
+                rows_new.fill(k, a_new - p + r, Some(&mut rows_old));
+            }
+            rows_old.net(k, a_old, (u[0], u[1]), &mut work, &mut net_old);
+            rows_new.net(k, a_new, (u[0], u[1]), &mut work, &mut net_new);
+            if net_old == net_new {
+                continue;
+            }
+            let patch = gap_patch(&net_old, &net_new, p, q, rational);
+            best = best.max(patch.corner_value());
+            queue.push(Cell::new(patch, 0));
         }
-    }
-    // Rational cells wait in their quick form; a cell gets its squared form only when it comes
-    // first in the queue and its quick bound does not settle it.
-    for quick in quick_cells {
-        queue.push(Cell {
-            upper: quick.upper,
-            numerator: Poly {
-                m: 0,
-                n: 0,
-                c: Vec::new(),
-            },
-            denominator: None,
-            depth: 0,
-            quick: Some(Box::new(quick)),
-        });
     }
     let floor = (ZERO_GAP * surface_edit_size(old).max(surface_edit_size(new))).powi(2);
     let mut halvings = 0;
-    while let Some(mut cell) = queue.pop() {
+    while let Some(cell) = queue.pop() {
         let bound = best * (1.0 + SURFACE_DEVIATION_RELATIVE_TOLERANCE);
-        if let Some(quick) = cell.quick.take() {
-            if quick.upper > bound.max(floor) {
-                let numerator = sum_of_squares(quick.gaps.into_iter());
-                let denominator = quick.weight.times(&quick.weight);
-                queue.push(Cell::new(numerator, Some(denominator), 0));
-            }
-            continue;
-        }
-        if cell.upper <= bound.max(floor) || cell.below(bound) {
-            // Proven: the squared gap stays within `bound` on this cell.
-            continue;
+        if cell.upper <= bound.max(floor) {
+            // Proven, and so is every cell behind it in the queue.
+            break;
         }
         if halvings >= MAX_CELLS || cell.depth >= MAX_DEPTH {
             // Out of budget: the largest remaining upper bound (the queue's first) stands.
             return cell.upper.max(bound).sqrt();
         }
         halvings += 1;
-        let in_u = cell.numerator.variation(true) >= cell.numerator.variation(false);
-        let (n_low, n_high) = cell.numerator.halves(in_u);
-        let (d_low, d_high) = match &cell.denominator {
-            Some(d) => {
-                let (low, high) = d.halves(in_u);
-                (Some(low), Some(high))
-            }
-            None => (None, None),
-        };
-        for child in [
-            Cell::new(n_low, d_low, cell.depth + 1),
-            Cell::new(n_high, d_high, cell.depth + 1),
-        ] {
-            best = best.max(child.corner_value());
-            queue.push(child);
+        let (in_u, at) = cell.patch.split_in_u();
+        let (low, high) = cell.patch.split(in_u, at);
+        for half in [low, high] {
+            best = best.max(half.corner_value());
+            queue.push(Cell::new(half, cell.depth + 1));
         }
     }
     // Every cell was proven within the bound of its time, and `best` only grew.
@@ -460,19 +514,244 @@ pub fn surface_max_deviation(old: &Surface, new: &Surface, rect: [(f64, f64); 2]
     }
 }
 
-/// `Σ_c g_c²` of polynomials of equal degrees.
-fn sum_of_squares(gaps: impl Iterator<Item = Poly>) -> Poly {
-    let mut total: Option<Poly> = None;
-    for gap in gaps {
-        let square = gap.times(&gap);
-        match &mut total {
-            Some(total) => total.add_assign(&square, 1.0),
-            None => total = Some(square),
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::spline::KnotForm;
+    use crate::surface::SurfaceLimits;
+    use proptest::prelude::*;
+
+    /// A random gap patch: degrees `(m, n)`, `g` in `[-1, 1]³`, `w` in `[0.2, 3]`.
+    fn patch() -> impl Strategy<Value = GapPatch> {
+        (1usize..=6, 1usize..=6).prop_flat_map(|(m, n)| {
+            prop::collection::vec(
+                (-1.0f64..1.0, -1.0f64..1.0, -1.0f64..1.0, 0.2f64..3.0),
+                (m + 1) * (n + 1),
+            )
+            .prop_map(move |c| GapPatch {
+                m,
+                n,
+                c: c.into_iter().map(|(x, y, z, w)| [x, y, z, w]).collect(),
+            })
+        })
+    }
+
+    fn squared(h: Lanes) -> f64 {
+        (h[0] * h[0] + h[1] * h[1] + h[2] * h[2]) / (h[3] * h[3])
+    }
+
+    proptest! {
+        /// The rational convex hull bound holds at every point of a dense grid, and a corner
+        /// value is a value.
+        #[test]
+        fn the_hull_bound_holds_on_a_dense_grid(patch in patch()) {
+            let bound = patch.hull_bound();
+            let mut largest = 0.0f64;
+            for a in 0..=40 {
+                for b in 0..=40 {
+                    largest = largest.max(squared(patch.value(a as f64 / 40.0, b as f64 / 40.0)));
+                }
+            }
+            prop_assert!(largest <= bound * (1.0 + 1e-12), "{largest} above the bound {bound}");
+            prop_assert!(patch.corner_value() <= largest * (1.0 + 1e-12) + 1e-300);
+        }
+
+        /// The parts are the patch on each part.
+        #[test]
+        fn parts_agree_with_the_whole(
+            patch in patch(),
+            s in 0.0f64..1.0,
+            t in 0.0f64..1.0,
+            at in 0.25f64..0.75,
+        ) {
+            for in_u in [true, false] {
+                let (low, high) = patch.split(in_u, at);
+                let (whole_low, whole_high) = if in_u {
+                    (patch.value(at * s, t), patch.value(at + (1.0 - at) * s, t))
+                } else {
+                    (patch.value(s, at * t), patch.value(s, at + (1.0 - at) * t))
+                };
+                for (a, b) in [(low.value(s, t), whole_low), (high.value(s, t), whole_high)] {
+                    for c in 0..4 {
+                        prop_assert!((a[c] - b[c]).abs() <= 1e-12 * (1.0 + b[c].abs()));
+                    }
+                }
+            }
+        }
+
+        /// The product form `G / W` of two homogeneous nets is the difference of their
+        /// rational patches.
+        #[test]
+        fn the_gap_patch_is_the_difference(
+            (p, q, old, new) in (1usize..=4, 1usize..=4).prop_flat_map(|(p, q)| {
+                let net = prop::collection::vec(
+                    (-2.0f64..2.0, -2.0f64..2.0, -2.0f64..2.0, 0.3f64..3.0),
+                    (p + 1) * (q + 1),
+                );
+                (Just(p), Just(q), net.clone(), net)
+            }),
+            s in 0.0f64..1.0,
+            t in 0.0f64..1.0,
+        ) {
+            let lanes = |net: &[(f64, f64, f64, f64)]| -> Vec<Lanes> {
+                net.iter().map(|&(x, y, z, w)| [x * w, y * w, z * w, w]).collect()
+            };
+            let (old, new) = (lanes(&old), lanes(&new));
+            let gap = gap_patch(&old, &new, p, q, true).value(s, t);
+            let point = |net: &[Lanes]| {
+                let h = GapPatch { m: p, n: q, c: net.to_vec() }.value(s, t);
+                [h[0] / h[3], h[1] / h[3], h[2] / h[3]]
+            };
+            let (a, b) = (point(&old), point(&new));
+            for c in 0..3 {
+                let expected = a[c] - b[c];
+                prop_assert!(
+                    (gap[c] / gap[3] - expected).abs() <= 1e-10 * (1.0 + a[c].abs() + b[c].abs()),
+                    "{} against {expected}",
+                    gap[c] / gap[3]
+                );
+            }
         }
     }
-    total.unwrap_or(Poly {
-        m: 0,
-        n: 0,
-        c: vec![0.0],
-    })
+
+    /// A bicubic of 6 × 6 poles with uneven knots, weights `weights` (or none).
+    fn bicubic(
+        poles: &[Vec<[f64; 3]>],
+        knots: (&[f64], &[f64]),
+        weights: Option<&[Vec<f64>]>,
+    ) -> Surface {
+        Surface::from_knot_forms(
+            (3, 3),
+            poles,
+            (KnotForm::Flat(knots.0), KnotForm::Flat(knots.1)),
+            weights,
+            &SurfaceLimits::default(),
+        )
+        .unwrap()
+    }
+
+    /// The largest `|S_a − S_b|` on a 150 × 150 grid of the common domain and a pattern
+    /// search from its best point: a distance the surfaces have.
+    fn sampled(a: &Surface, b: &Surface) -> f64 {
+        let [(u0, u1), (v0, v1)] = a.domain();
+        let gap = |u: f64, v: f64| {
+            let (u, v) = (u.clamp(u0, u1), v.clamp(v0, v1));
+            let (x, y) = (a.point(u, v), b.point(u, v));
+            ((x[0] - y[0]).powi(2) + (x[1] - y[1]).powi(2) + (x[2] - y[2]).powi(2)).sqrt()
+        };
+        let n = 150;
+        let (mut best, mut at) = (0.0f64, (u0, v0));
+        for k in 0..=n {
+            for l in 0..=n {
+                let (u, v) = (
+                    u0 + (u1 - u0) * k as f64 / n as f64,
+                    v0 + (v1 - v0) * l as f64 / n as f64,
+                );
+                if gap(u, v) > best {
+                    (best, at) = (gap(u, v), (u, v));
+                }
+            }
+        }
+        let mut step = [(u1 - u0) / n as f64, (v1 - v0) / n as f64];
+        for _ in 0..80 {
+            let mut moved = false;
+            for (du, dv) in [(1.0, 0.0), (-1.0, 0.0), (0.0, 1.0), (0.0, -1.0)] {
+                let c = (at.0 + du * step[0], at.1 + dv * step[1]);
+                if gap(c.0, c.1) > best {
+                    (best, at, moved) = (gap(c.0, c.1), c, true);
+                }
+            }
+            if !moved {
+                step = [step[0] / 2.0, step[1] / 2.0];
+            }
+        }
+        best
+    }
+
+    fn net() -> impl Strategy<Value = Vec<Vec<[f64; 3]>>> {
+        prop::collection::vec(-0.4f64..0.4, 36).prop_map(|h| {
+            (0..6)
+                .map(|i| {
+                    (0..6)
+                        .map(|j| {
+                            [
+                                i as f64 + 0.3 * h[i * 6 + j],
+                                j as f64,
+                                2.0 * h[(j * 6 + i) % 36],
+                            ]
+                        })
+                        .collect()
+                })
+                .collect()
+        })
+    }
+
+    const KNOTS: [f64; 10] = [0.0, 0.0, 0.0, 0.0, 0.3, 0.55, 1.0, 1.0, 1.0, 1.0];
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(48))]
+
+        /// Against dense sampling: the certified deviation of a weight change, a pole move
+        /// and a knot move is at least the sampled maximum and within the tolerance (and the
+        /// sample's own shortfall) above it.
+        #[test]
+        fn the_certified_deviation_brackets_the_sampled_one(
+            poles in net(),
+            weights in prop::collection::vec(0.5f64..2.0, 36),
+            change in prop::collection::vec(0.3f64..3.0, 3),
+            moved in prop::collection::vec(-0.5f64..0.5, 3),
+            knot in 0.32f64..0.53,
+            rational in any::<bool>(),
+            kind in 0usize..3,
+        ) {
+            let weights: Vec<Vec<f64>> =
+                (0..6).map(|i| (0..6).map(|j| weights[i * 6 + j]).collect()).collect();
+            let old_weights = rational.then_some(weights.as_slice());
+            let old = bicubic(&poles, (&KNOTS, &KNOTS), old_weights);
+            let new = match kind {
+                0 => {
+                    // Three weights of neighbouring poles.
+                    let mut w = old_weights.map_or(vec![vec![1.0; 6]; 6], |w| w.to_vec());
+                    for (k, (i, j)) in [(2, 2), (2, 3), (3, 2)].into_iter().enumerate() {
+                        w[i][j] *= change[k];
+                    }
+                    bicubic(&poles, (&KNOTS, &KNOTS), Some(&w))
+                }
+                1 => {
+                    let mut moved_poles = poles.clone();
+                    moved_poles[3][2] = [
+                        poles[3][2][0] + moved[0],
+                        poles[3][2][1] + moved[1],
+                        poles[3][2][2] + moved[2],
+                    ];
+                    bicubic(&moved_poles, (&KNOTS, &KNOTS), old_weights)
+                }
+                _ => {
+                    let mut knots = KNOTS;
+                    knots[4] = knot;
+                    bicubic(&poles, (&knots, &KNOTS), old_weights)
+                }
+            };
+            let bound = surface_max_deviation(&old, &new, old.domain());
+            let found = sampled(&old, &new);
+            prop_assert!(found <= bound * (1.0 + 1e-9) + 1e-12, "sampled {found} above {bound}");
+            prop_assert!(
+                bound <= found * (1.0 + SURFACE_DEVIATION_RELATIVE_TOLERANCE) + 1e-9,
+                "bound {bound} above the sampled {found}"
+            );
+        }
+    }
+
+    #[test]
+    fn equal_surfaces_deviate_nowhere() {
+        let poles: Vec<Vec<[f64; 3]>> = (0..6)
+            .map(|i| {
+                (0..6)
+                    .map(|j| [i as f64, j as f64, ((i * j) % 3) as f64])
+                    .collect()
+            })
+            .collect();
+        let a = bicubic(&poles, (&KNOTS, &KNOTS), None);
+        assert_eq!(surface_max_deviation(&a, &a.clone(), a.domain()), 0.0);
+    }
 }
