@@ -336,6 +336,22 @@ async fn a_surface_point_dragged_in_3d_lands_on_its_target_esc_cancels_and_undo_
     space_settled(&page).await;
     assert_eq!(shapes(&page).await[0], original, "Esc cancels the drag");
 
+    // The cursor shows grab over the surface, not over the background.
+    let over = pixel_of(&page, &surface_point(&app, &original, [0.5, 0.5]).await).await;
+    page.move_to(over).await;
+    page.wait_until(
+        "grab over the surface",
+        "getComputedStyle(document.getElementById('space')).cursor === 'grab'",
+    )
+    .await;
+    let corner = background_pixel(&page).await;
+    page.move_to(corner).await;
+    page.wait_until(
+        "no grab over the background",
+        "getComputedStyle(document.getElementById('space')).cursor === 'crosshair'",
+    )
+    .await;
+
     // Press on S(0.45, 0.55) and drag it 60 px right and 40 px up.
     let picked = surface_point(&app, &surface, [0.45, 0.55]).await;
     let at = pixel_of(&page, &picked).await;

@@ -80,17 +80,35 @@ export function setupSpace(elements) {
     event.preventDefault();
     canvas.setPointerCapture(event.pointerId);
     gesture = { pointerId: event.pointerId };
+    canvas.dataset.dragging = "true";
     editor.startDrag(hit);
   }, { capture: true });
+  // Hover: the cursor shows *grab* over an object (a ray cast at most once a frame).
+  let hoverAt = null;
+  const hover = () => {
+    const pixel = hoverAt;
+    hoverAt = null;
+    if (!pixel || gesture) return;
+    const over = editor.hit(pixel) !== null;
+    if (canvas.dataset.hover !== String(over)) canvas.dataset.hover = String(over);
+  };
   canvas.addEventListener("pointermove", (event) => {
-    if (!gesture || event.pointerId !== gesture.pointerId) return;
+    if (!gesture || event.pointerId !== gesture.pointerId) {
+      if (event.buttons === 0 && hoverAt === null) requestAnimationFrame(hover);
+      if (event.buttons === 0) hoverAt = pixelOf(event);
+      return;
+    }
     event.stopImmediatePropagation();
     editor.dragTo(pixelOf(event), event.altKey, event.timeStamp);
   }, { capture: true });
+  canvas.addEventListener("pointerleave", () => {
+    canvas.dataset.hover = "false";
+  });
   const end = (event) => {
     if (!gesture || event.pointerId !== gesture.pointerId) return;
     event.stopImmediatePropagation();
     gesture = null;
+    canvas.dataset.dragging = "false";
     if (event.type === "pointercancel") editor.cancel();
     else editor.release();
   };
@@ -119,6 +137,7 @@ export function setupSpace(elements) {
     if (document.body.dataset.mode !== "3d") return;
     if (event.key === "Escape") {
       if (gesture) gesture = null;
+      canvas.dataset.dragging = "false";
       editor.cancel();
       event.stopImmediatePropagation();
       return;
