@@ -153,8 +153,9 @@ fn the_quadratic_direct_pairs_are_the_papers_closed_forms() {
 /// ex02: the quintic's envelope (q = 4) at t = 0.5, u_11 := 0.5 (the right side), with the
 /// target planted by moving u_7 by +0.02 and u_15 by −0.03: the outermost pair gets exactly
 /// those knots back (closed form), and three inner pairs reach the target too.
-#[test]
-fn the_quintic_envelope_finds_the_planted_outermost_pair_and_three_more() {
+/// The study's worked quintic (ex02): sixteen points, ten uniform interior knots in
+/// [0.08, 0.92].
+fn worked_quintic() -> (Curve, Vec<f64>) {
     let interior: Vec<f64> = (0..10)
         .map(|i| ((0.08 + (0.92 - 0.08) * i as f64 / 9.0) * 1e4).round() / 1e4)
         .collect();
@@ -179,7 +180,12 @@ fn the_quintic_envelope_finds_the_planted_outermost_pair_and_three_more() {
         [15.0, 0.5],
         [16.0, 2.0],
     ];
-    let quintic = curve(5, &points, &knots);
+    (curve(5, &points, &knots), knots)
+}
+
+#[test]
+fn the_quintic_envelope_finds_the_planted_outermost_pair_and_three_more() {
+    let (quintic, knots) = worked_quintic();
     // The planted knots: u_11 := 0.5, u_7 += 0.02, u_15 -= 0.03.
     let mut planted = knots.clone();
     planted[11] = 0.5;
@@ -207,6 +213,42 @@ fn the_quintic_envelope_finds_the_planted_outermost_pair_and_three_more() {
     assert_close(&pair_values(&found, [10, 12]), [0.45113, 0.643085], 5e-6);
     assert_close(&pair_values(&found, [9, 13]), [0.349794, 0.750593], 5e-6);
     assert_close(&pair_values(&found, [8, 12]), [0.249612, 0.649079], 5e-6);
+}
+
+/// The pairs and triples are solved on the rayon pool when there are many: the answer (every
+/// solution, in order, and every set's membership) is the same on one thread and on two,
+/// for a quintic with every family on both sides, triples too and a target reached by
+/// many of them.
+#[test]
+fn the_answer_does_not_depend_on_the_threads_solving_it() {
+    let (quintic, _) = worked_quintic();
+    let query = ShapeQuery {
+        side: SideChoice::Both,
+        ..ShapeQuery::new(&quintic, 0.5)
+    };
+    let p = quintic.point(0.5).unwrap();
+    let mut reached = 0;
+    for target in [
+        [p[0] + 0.1, p[1] + 0.05, 0.0],
+        [p[0] - 0.02, p[1] + 0.03, 0.0],
+    ] {
+        let on = |threads: usize| {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            let every = FamilyChoice::Only {
+                envelope: true,
+                direct: true,
+                triples: true,
+            };
+            pool.install(|| solve_families(&query, every, target))
+        };
+        let (one, two) = (on(1), on(2));
+        reached += one.solutions.len();
+        assert_eq!(one, two);
+    }
+    assert!(reached >= 20, "{reached} solutions");
 }
 
 /// ex03: one pair with three admissible solutions (a folded map): the span's two ends of a

@@ -10,7 +10,7 @@ use super::problems::{
     Family, FamilyChoice, FamilyProblem, direct_problem, envelope_problem, extent, plane_of,
     unknown_sets,
 };
-use super::roots::{LocalRoot, solve_unknowns};
+use super::roots::{LocalRoot, Solver, solve_unknowns, solver_for};
 use super::tensor::MAX_VARIABLES;
 use crate::shape::candidate::Side;
 use crate::shape::pairs::KnotPair;
@@ -146,10 +146,15 @@ fn rows_for(curve: &Curve, problem: &FamilyProblem, size: usize) -> Option<Vec<P
 }
 
 /// Solves `s(t) → target` with every requested family (module docs).
+///
+/// The pairs and triples are independent problems: they are collected first, solved (on
+/// several threads when there are enough of them, [`solve_sets`]) and put back in answer
+/// order, so the answer does not depend on how they were scheduled.
 pub fn solve_families(query: &ShapeQuery, choice: FamilyChoice, target: Point) -> FamilyOutcome {
     let curve = query.curve;
     let mut outcome = FamilyOutcome::default();
-    let mut budget = REQUEST_BOXES;
+    let mut pending: Vec<PendingGroup> = Vec::new();
+    let mut jobs: Vec<SetJob> = Vec::new();
     for problem in family_problems(query, choice) {
         if problem.family == Family::Envelope && curve.degree() == 3 {
             cubic_envelope(query, target, problem, &mut outcome);
@@ -183,41 +188,133 @@ pub fn solve_families(query: &ShapeQuery, choice: FamilyChoice, target: Point) -
         let triangle = Triangle::of(&local);
         // Beyond the accepted residual (and rounding) from a set's hull, nothing is accepted.
         let margin = accepted * (1.0 + 1e-6) + 1e-12 * extent(&group.problem.control_points());
+        let mut sets = Vec::new();
         for unknowns in unknown_sets(&local, size, curve, query.keep_domain) {
             let full: Vec<usize> = unknowns.iter().map(|&m| local.full_index[m]).collect();
             let set = KnotSet::new(&full);
-            let mut contains = false;
             if triangle.excludes(&unknowns, target, &rows, margin) {
-                group.members.push(SetMembership {
-                    knots: set,
-                    omega: None,
-                    contains,
-                });
+                sets.push((set, None));
                 continue;
             }
-            for root in solve_unknowns(&local, &unknowns, target, &rows, weighted, &mut budget) {
-                if let Some(solution) = full_solution(
-                    query,
-                    &group.problem,
-                    &local,
-                    &unknowns,
-                    &root,
-                    target,
-                    accepted,
-                ) {
-                    contains = true;
-                    outcome.solutions.push(solution);
-                }
-            }
+            sets.push((set, Some(jobs.len())));
+            jobs.push(SetJob {
+                group: pending.len(),
+                local: local.clone(),
+                unknowns,
+                rows: rows.clone(),
+                weighted,
+                accepted,
+            });
+        }
+        pending.push((group, sets));
+    }
+    let problems: Vec<&FamilyProblem> = pending.iter().map(|(g, _)| &g.problem).collect();
+    let mut found = solve_sets(query, &problems, &jobs, target);
+    for (mut group, sets) in pending {
+        for (set, job) in sets {
+            let solutions = job
+                .map(|j| std::mem::take(&mut found[j]))
+                .unwrap_or_default();
             group.members.push(SetMembership {
                 knots: set,
                 omega: None,
-                contains,
+                contains: !solutions.is_empty(),
             });
+            outcome.solutions.extend(solutions);
         }
         outcome.groups.push(group);
     }
     outcome
+}
+
+/// A group in answer order and its sets, each with the index of the job solving it (none
+/// when the set's hull excludes the target).
+type PendingGroup = (FamilyGroup, Vec<(KnotSet, Option<usize>)>);
+
+/// One pair or triple to solve: its group's index, the local problem and the unknowns, the
+/// directions of its equations and the residual a solution may have.
+struct SetJob {
+    group: usize,
+    local: LocalProblem,
+    unknowns: Vec<usize>,
+    rows: Vec<Point>,
+    weighted: bool,
+    accepted: f64,
+}
+
+/// Sets that call for a subdivision at least this many before [`solve_sets`] uses more than
+/// one thread: below it waking the pool costs more than it saves (a cubic's direct pairs).
+const PARALLEL_SUBDIVISIONS: usize = 12;
+
+/// Every job's kept solutions, in job order.
+///
+/// The request's box budget ([`REQUEST_BOXES`]) is shared without depending on the order
+/// the jobs run in: each first gets an equal share (at most its own cap); a job that used its
+/// whole share (it may have needed more) is solved again afterwards, one after the other in
+/// job order, with what is left of the budget. When no job needs more than its share, which
+/// is the rule, every job gets the boxes it would get alone.
+///
+/// Jobs run on the rayon pool when at least [`PARALLEL_SUBDIVISIONS`] of them subdivide;
+/// the answer is the same either way.
+fn solve_sets(
+    query: &ShapeQuery,
+    problems: &[&FamilyProblem],
+    jobs: &[SetJob],
+    target: Point,
+) -> Vec<Vec<KnotSolution>> {
+    use rayon::prelude::*;
+    let share = REQUEST_BOXES / jobs.len().max(1);
+    let run = |job: &SetJob, budget: &mut usize| -> Vec<KnotSolution> {
+        solve_unknowns(
+            &job.local,
+            &job.unknowns,
+            target,
+            &job.rows,
+            job.weighted,
+            budget,
+        )
+        .iter()
+        .filter_map(|root| {
+            full_solution(
+                query,
+                problems[job.group],
+                &job.local,
+                &job.unknowns,
+                root,
+                target,
+                job.accepted,
+            )
+        })
+        .collect()
+    };
+    let first = |job: &SetJob| {
+        let mut budget = share;
+        let solutions = run(job, &mut budget);
+        (solutions, share - budget, budget == 0)
+    };
+    let subdivisions = jobs
+        .iter()
+        .filter(|job| solver_for(&job.local, &job.unknowns) == Solver::Subdivision)
+        .count();
+    let results: Vec<(Vec<KnotSolution>, usize, bool)> = if subdivisions >= PARALLEL_SUBDIVISIONS {
+        jobs.par_iter().map(first).collect()
+    } else {
+        jobs.iter().map(first).collect()
+    };
+    // The boxes of the jobs solved again are not counted twice.
+    let kept: usize = results.iter().filter(|r| !r.2).map(|r| r.1).sum();
+    let mut left = REQUEST_BOXES.saturating_sub(kept);
+    results
+        .into_iter()
+        .zip(jobs)
+        .map(|((solutions, _, spent), job)| {
+            if spent && left > 0 {
+                run(job, &mut left)
+            } else {
+                solutions
+            }
+        })
+        .collect()
 }
 
 /// The cubic's envelope side by the closed forms of §4 (the third release's solver, whose
