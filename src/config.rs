@@ -184,6 +184,18 @@ pub struct Config {
     )]
     pub worker_threads: u16,
 
+    /// Threads one request's solve may use (a knot family's pairs and triples, the
+    /// deviations of many solutions): 0 = every core, 1 = the request's own thread only (best
+    /// where the cores are busy otherwise, e.g. a browser on the same small machine).
+    #[arg(
+        long,
+        env = "KNOTSHAPE_SOLVE_THREADS",
+        default_value_t = 0,
+        value_parser = clap::value_parser!(u16).range(0..=MAX_WORKER_THREADS as i64),
+        global = true
+    )]
+    pub solve_threads: u16,
+
     /// Log format: `human` or `json`.
     #[arg(long, env = "KNOTSHAPE_LOG_FORMAT", value_enum, default_value_t = LogFormat::Human, global = true)]
     pub log_format: LogFormat,
@@ -218,6 +230,7 @@ impl Default for Config {
             body_timeout_ms: ConnectionLimits::DEFAULT.body_timeout_ms,
             max_connections: ConnectionLimits::DEFAULT.max_connections,
             worker_threads: 0,
+            solve_threads: 0,
             log_format: LogFormat::Human,
             log_filter: "info".to_owned(),
         }
@@ -470,6 +483,10 @@ mod tests {
         assert_eq!(parse("0").unwrap().worker_threads, 0);
         assert!(parse("1025").is_err());
         assert!(parse("-1").is_err());
+        let solve = |value: &str| Config::try_parse_from(["knotshape", "--solve-threads", value]);
+        assert_eq!(solve("1").unwrap().solve_threads, 1);
+        assert_eq!(Config::default().solve_threads, 0);
+        assert!(solve("1025").is_err());
     }
 
     #[test]

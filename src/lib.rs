@@ -4,6 +4,7 @@
 pub mod config;
 pub mod http;
 pub mod interchange;
+pub mod parallel;
 pub mod shape;
 pub mod spline;
 pub mod surface;

@@ -70,6 +70,9 @@ pub struct Server {
 impl Server {
     /// Binds `config.listen` (port 0 picks a free port) and builds the router.
     pub async fn bind(config: &Config) -> io::Result<Server> {
+        if config.solve_threads != 0 {
+            crate::parallel::set_solve_threads(usize::from(config.solve_threads));
+        }
         let listener = TcpListener::bind(config.listen).await?;
         let readiness = Readiness::new();
         let state = AppState::new(config, readiness.clone(), crate::openapi_json().into());

@@ -431,7 +431,7 @@ fn measure_and_rank(curve: &crate::spline::Curve, solutions: &mut [EditSolution]
     // Each bound is independent; on the pool when there are many and each is worth it
     // (degree 4 and up: a quintic's takes some 60,000 instructions, a cubic's a few
     // thousand, less than waking the pool).
-    if solutions.len() >= PARALLEL_DEVIATIONS && curve.degree() >= 4 {
+    if solutions.len() >= PARALLEL_DEVIATIONS && curve.degree() >= 4 && crate::parallel::allowed() {
         solutions.par_iter_mut().for_each(measure);
     } else {
         solutions.iter_mut().for_each(measure);

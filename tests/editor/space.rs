@@ -14,7 +14,7 @@ use super::browser::Browser;
 use super::page::Page;
 use super::steps::{p95, screenshot, target_dir};
 use super::timing::{main_thread_work, server_time};
-use crate::helpers::{TestApp, spawn_app};
+use crate::helpers::{TestApp, spawn_app, spawn_app_with};
 
 /// A bicubic of `n × n` poles waved as the page's sample (`sampleSurface` in sample.js).
 fn waved_surface(n: usize) -> Value {
@@ -695,7 +695,9 @@ const MOVES_3D: usize = 120;
 /// preview was drawn for at least every fourth move and the page's own part within a frame.
 #[tokio::test]
 async fn drag_to_redraw_in_3d_on_a_30_by_30_surface_reports_its_timings() {
-    let app = spawn_app().await;
+    // The browser and the service share the machine's cores: one solve thread per request
+    // (as in tests/editor/timing.rs).
+    let app = spawn_app_with(|config| config.solve_threads = 1).await;
     let browser = Browser::start_alone().await;
     let page = Page::open(&browser.client, &app.address).await;
     let surface = waved_surface(30);

@@ -21,7 +21,7 @@ use super::steps::{
     assert_one_of, helix, many_poles, numbers, p95, paste, pick, point_at, quintic, sample,
     solve_family, target_dir,
 };
-use crate::helpers::{TestApp, spawn_app};
+use crate::helpers::{TestApp, spawn_app_with};
 
 /// Pointer moves of the measured drag.
 const MOVES: usize = 240;
@@ -118,7 +118,10 @@ async fn measure(drag: &Drag) -> Measured {
     let (curve, t, label, knots_only) = (curve.clone(), *t, *label, *knots_only);
     // Alone: another test's browser would be measured too.
     let browser = Browser::start_alone().await;
-    let app = spawn_app().await;
+    // The browser and the service share this machine's two cores: the service solves each
+    // request on its own thread (`--solve-threads 1`), as on a designer's small machine
+    // running both; spread over both cores the solve would take them from the page's frames.
+    let app = spawn_app_with(|config| config.solve_threads = 1).await;
     let page = Page::open(&browser.client, &app.address).await;
     if numbers(&curve) != numbers(&sample()) {
         paste(&page, &curve).await;

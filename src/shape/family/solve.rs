@@ -254,7 +254,8 @@ const PARALLEL_SUBDIVISIONS: usize = 12;
 /// job order, with what is left of the budget. When no job needs more than its share, which
 /// is the rule, every job gets the boxes it would get alone.
 ///
-/// Jobs run on the rayon pool when at least [`PARALLEL_SUBDIVISIONS`] of them subdivide;
+/// Jobs run on the rayon pool when at least [`PARALLEL_SUBDIVISIONS`] of them subdivide (and
+/// [`crate::parallel::allowed`]);
 /// the answer is the same either way.
 fn solve_sets(
     query: &ShapeQuery,
@@ -296,11 +297,12 @@ fn solve_sets(
         .iter()
         .filter(|job| solver_for(&job.local, &job.unknowns) == Solver::Subdivision)
         .count();
-    let results: Vec<(Vec<KnotSolution>, usize, bool)> = if subdivisions >= PARALLEL_SUBDIVISIONS {
-        jobs.par_iter().map(first).collect()
-    } else {
-        jobs.iter().map(first).collect()
-    };
+    let results: Vec<(Vec<KnotSolution>, usize, bool)> =
+        if subdivisions >= PARALLEL_SUBDIVISIONS && crate::parallel::allowed() {
+            jobs.par_iter().map(first).collect()
+        } else {
+            jobs.iter().map(first).collect()
+        };
     // The boxes of the jobs solved again are not counted twice.
     let kept: usize = results.iter().filter(|r| !r.2).map(|r| r.1).sum();
     let mut left = REQUEST_BOXES.saturating_sub(kept);

@@ -183,8 +183,12 @@ fn checked(
 
 /// Measures each solution's certified deviation from `surface` and sorts by it (ties: the
 /// better conditioned first).
+///
+/// Each bound is independent and costly (tens to hundreds of microseconds: a branch and bound
+/// over the changed patches), so two or more are measured on the rayon pool.
 pub fn ranked(surface: &Surface, mut solutions: Vec<SurfaceSolution>) -> Vec<SurfaceSolution> {
-    for solution in &mut solutions {
+    use rayon::prelude::*;
+    let measure = |solution: &mut SurfaceSolution| {
         if solution.max_deviation.is_none() {
             let deviation = match solution.detail.method().method() {
                 Some(method) => method.deviation(surface, solution),
@@ -196,6 +200,15 @@ pub fn ranked(surface: &Surface, mut solutions: Vec<SurfaceSolution>) -> Vec<Sur
             };
             solution.max_deviation = Some(deviation);
         }
+    };
+    let unmeasured = solutions
+        .iter()
+        .filter(|s| s.max_deviation.is_none())
+        .count();
+    if unmeasured >= 2 && crate::parallel::allowed() {
+        solutions.par_iter_mut().for_each(measure);
+    } else {
+        solutions.iter_mut().for_each(measure);
     }
     solutions.sort_by(|a, b| {
         let key = |s: &SurfaceSolution| s.max_deviation.unwrap_or(f64::INFINITY);
