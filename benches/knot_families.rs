@@ -6,6 +6,12 @@
 
 use criterion::{Criterion, black_box, criterion_group, criterion_main};
 
+/// The service's allocator (src/main.rs), so that the solve is timed as the service runs it:
+/// its many small allocations cost less under mimalloc than under glibc's malloc, more so
+/// on two threads (docs/performance.md, "The knot method on every degree").
+#[global_allocator]
+static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 #[path = "support/edit_cases.rs"]
 mod edit_cases;
 

@@ -199,7 +199,6 @@ pub fn solve_families(query: &ShapeQuery, choice: FamilyChoice, target: Point) -
             sets.push((set, Some(jobs.len())));
             jobs.push(SetJob {
                 group: pending.len(),
-                local: local.clone(),
                 unknowns,
                 rows: rows.clone(),
                 weighted,
@@ -231,11 +230,10 @@ pub fn solve_families(query: &ShapeQuery, choice: FamilyChoice, target: Point) -
 /// when the set's hull excludes the target).
 type PendingGroup = (FamilyGroup, Vec<(KnotSet, Option<usize>)>);
 
-/// One pair or triple to solve: its group's index, the local problem and the unknowns, the
+/// One pair or triple to solve: its group's index (whose local problem it is), the unknowns, the
 /// directions of its equations and the residual a solution may have.
 struct SetJob {
     group: usize,
-    local: LocalProblem,
     unknowns: Vec<usize>,
     rows: Vec<Point>,
     weighted: bool,
@@ -265,9 +263,14 @@ fn solve_sets(
 ) -> Vec<Vec<KnotSolution>> {
     use rayon::prelude::*;
     let share = REQUEST_BOXES / jobs.len().max(1);
+    // Jobs are made only for groups with a local problem.
+    let local = |job: &SetJob| problems[job.group].problem.as_ref();
     let run = |job: &SetJob, budget: &mut usize| -> Vec<KnotSolution> {
+        let Some(local) = local(job) else {
+            return Vec::new();
+        };
         solve_unknowns(
-            &job.local,
+            local,
             &job.unknowns,
             target,
             &job.rows,
@@ -279,7 +282,7 @@ fn solve_sets(
             full_solution(
                 query,
                 problems[job.group],
-                &job.local,
+                local,
                 &job.unknowns,
                 root,
                 target,
@@ -295,7 +298,9 @@ fn solve_sets(
     };
     let subdivisions = jobs
         .iter()
-        .filter(|job| solver_for(&job.local, &job.unknowns) == Solver::Subdivision)
+        .filter(|job| {
+            local(job).is_some_and(|l| solver_for(l, &job.unknowns) == Solver::Subdivision)
+        })
         .count();
     let results: Vec<(Vec<KnotSolution>, usize, bool)> =
         if subdivisions >= PARALLEL_SUBDIVISIONS && crate::parallel::allowed() {
