@@ -5,6 +5,11 @@
 //! browser fails these tests with a message saying so, never skips them.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
+/// The service's allocator (src/main.rs): the service under test runs in this process, and
+/// its drag timings are the binary's.
+#[global_allocator]
+static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 #[path = "api/helpers.rs"]
 #[allow(dead_code)]
 mod helpers;
