@@ -151,6 +151,16 @@ fn rows_for(curve: &Curve, problem: &FamilyProblem, size: usize) -> Option<Vec<P
 /// several threads when there are enough of them, [`solve_sets`]) and put back in answer
 /// order, so the answer does not depend on how they were scheduled.
 pub fn solve_families(query: &ShapeQuery, choice: FamilyChoice, target: Point) -> FamilyOutcome {
+    solve_families_within(query, choice, target, REQUEST_BOXES)
+}
+
+/// [`solve_families`] with `boxes` subdivision boxes for the whole request.
+fn solve_families_within(
+    query: &ShapeQuery,
+    choice: FamilyChoice,
+    target: Point,
+    boxes: usize,
+) -> FamilyOutcome {
     let curve = query.curve;
     let mut outcome = FamilyOutcome::default();
     let mut pending: Vec<PendingGroup> = Vec::new();
@@ -208,7 +218,7 @@ pub fn solve_families(query: &ShapeQuery, choice: FamilyChoice, target: Point) -
         pending.push((group, sets));
     }
     let problems: Vec<&FamilyProblem> = pending.iter().map(|(g, _)| &g.problem).collect();
-    let mut found = solve_sets(query, &problems, &jobs, target);
+    let mut found = solve_sets(query, &problems, &jobs, target, boxes);
     for (mut group, sets) in pending {
         for (set, job) in sets {
             let solutions = job
@@ -246,7 +256,8 @@ const PARALLEL_SUBDIVISIONS: usize = 12;
 
 /// Every job's kept solutions, in job order.
 ///
-/// The request's box budget ([`REQUEST_BOXES`]) is shared without depending on the order
+/// The request's box budget (`boxes`, [`REQUEST_BOXES`] in a request) is shared without
+/// depending on the order
 /// the jobs run in: each first gets an equal share (at most its own cap); a job that used its
 /// whole share (it may have needed more) is solved again afterwards, one after the other in
 /// job order, with what is left of the budget. When no job needs more than its share, which
@@ -260,9 +271,10 @@ fn solve_sets(
     problems: &[&FamilyProblem],
     jobs: &[SetJob],
     target: Point,
+    boxes: usize,
 ) -> Vec<Vec<KnotSolution>> {
     use rayon::prelude::*;
-    let share = REQUEST_BOXES / jobs.len().max(1);
+    let share = boxes / jobs.len().max(1);
     // Jobs are made only for groups with a local problem.
     let local = |job: &SetJob| problems[job.group].problem.as_ref();
     let run = |job: &SetJob, budget: &mut usize| -> Vec<KnotSolution> {
@@ -310,7 +322,7 @@ fn solve_sets(
         };
     // The boxes of the jobs solved again are not counted twice.
     let kept: usize = results.iter().filter(|r| !r.2).map(|r| r.1).sum();
-    let mut left = REQUEST_BOXES.saturating_sub(kept);
+    let mut left = boxes.saturating_sub(kept);
     results
         .into_iter()
         .zip(jobs)
@@ -573,4 +585,77 @@ pub(crate) fn smallest_singular_value(columns: &[Point]) -> f64 {
         }
     };
     eigenvalue.max(0.0).sqrt()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::spline::CurveLimits;
+
+    /// The worked quintic of the fourth release's study (tests/knot_families.rs).
+    fn quintic() -> Curve {
+        let points: Vec<[f64; 2]> = [
+            [0.0, 0.0],
+            [1.0, 1.5],
+            [2.0, 2.5],
+            [3.2, 3.0],
+            [4.5, 2.8],
+            [5.5, 1.8],
+            [6.3, 0.6],
+            [7.5, 0.2],
+            [8.8, 0.9],
+            [9.8, 2.2],
+            [11.0, 3.0],
+            [12.2, 2.6],
+            [13.0, 1.2],
+            [14.0, 0.0],
+            [15.0, 0.5],
+            [16.0, 2.0],
+        ]
+        .to_vec();
+        let mut knots = vec![0.0; 6];
+        knots.extend((0..10).map(|i| ((0.08 + 0.84 * i as f64 / 9.0) * 1e4).round() / 1e4));
+        knots.extend([1.0; 6]);
+        Curve::new(5, &points, &knots, None, &CurveLimits::default()).unwrap()
+    }
+
+    /// Budgets too small for the sets' shares make sets solve again with what is left, in
+    /// order: the answer is still the same on one thread and on two, and every solution it
+    /// keeps is one the full budget finds.
+    #[test]
+    fn a_short_budget_gives_the_same_answer_on_any_threads() {
+        let curve = quintic();
+        let query = ShapeQuery::new(&curve, 0.5);
+        let p = curve.point(0.5).unwrap();
+        let target = [p[0] + 0.1, p[1] + 0.05, 0.0];
+        let on = |threads: usize, boxes: usize| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap()
+                .install(|| solve_families_within(&query, FamilyChoice::Default, target, boxes))
+        };
+        let full = on(2, REQUEST_BOXES);
+        assert!(full.solutions.len() >= 20, "{}", full.solutions.len());
+        let mut fewer_somewhere = false;
+        for boxes in [0, 40, 400, 1000] {
+            let (one, two) = (on(1, boxes), on(2, boxes));
+            assert_eq!(one, two, "{boxes} boxes");
+            fewer_somewhere |= one.solutions.len() < full.solutions.len();
+            for solution in &one.solutions {
+                let matched = full.solutions.iter().any(|s| {
+                    s.knots_moved == solution.knots_moved
+                        && s.knots
+                            .iter()
+                            .zip(&solution.knots)
+                            .all(|(a, b)| (a - b).abs() <= 1e-9)
+                });
+                assert!(
+                    matched,
+                    "{boxes} boxes: {solution:?} not in the full answer"
+                );
+            }
+        }
+        assert!(fewer_somewhere, "a short budget loses some solution");
+    }
 }
