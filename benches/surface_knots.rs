@@ -24,7 +24,8 @@ use knotshape::shape::family::Family;
 use knotshape::shape::{ShapeQuery, SolveOptions, solve};
 use knotshape::spline::KnotForm;
 use knotshape::surface::edit::knots::{
-    SurfaceKnotFamily, SurfaceKnotOptions, solve_surface_knots, solve_surface_knots_with,
+    SurfaceKnotFamily, SurfaceKnotOptions, nearest_surface_knot_target, solve_surface_knots,
+    solve_surface_knots_with,
 };
 use knotshape::surface::{Surface, SurfaceLimits};
 
@@ -151,6 +152,20 @@ fn bench_surface_knots(c: &mut Criterion) {
     };
     c.bench_function("surface_knots/bicubic_20x20_iso_only", |b| {
         b.iter(|| solve_surface_knots_with(black_box(&surface), u, v, black_box(target), &iso_only))
+    });
+    // A target ten times as far along the same offset, out of every move's reach: the
+    // nearest reachable point (one-direction families, then the mixed moves' search).
+    let far: [f64; 3] = std::array::from_fn(|k| point[k] + 10.0 * (target[k] - point[k]));
+    assert!(solve_surface_knots(&surface, u, v, far, true).is_empty());
+    let near = nearest_surface_knot_target(&surface, u, v, far, true).unwrap();
+    let gap = |p: [f64; 3]| (0..3).map(|k| (p[k] - far[k]).powi(2)).sum::<f64>().sqrt();
+    eprintln!(
+        "out of reach by {:.4} (the point {:.4} away)",
+        gap(near),
+        gap(point)
+    );
+    c.bench_function("surface_knots/bicubic_20x20_nearest_out_of_reach", |b| {
+        b.iter(|| nearest_surface_knot_target(black_box(&surface), u, v, black_box(far), true))
     });
 }
 

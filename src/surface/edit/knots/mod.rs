@@ -15,6 +15,7 @@
 
 mod iso;
 mod mixed;
+mod nearest;
 mod plane;
 mod reach;
 

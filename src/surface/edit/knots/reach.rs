@@ -6,8 +6,8 @@
 //! iso-curve ([`crate::shape::family::family_regions`],
 //! [`crate::shape::family::nearest_across_families`], and for a cubic's envelope pairs
 //! [`crate::shape::nearest_reachable`]): their points are the surface's at `(ũ, ṽ)` with the
-//! same knots. The mixed moves reach a solid (three knots, 3D): they are not drawn, and the
-//! nearest point is searched over the one-direction families only.
+//! same knots. The mixed moves reach a solid (three knots, 3D): they are not drawn; their
+//! nearest point is searched ([`super::nearest`], verified by the mixed solver).
 
 use super::iso::{iso_curve_along, iso_query, movable};
 use super::{
@@ -220,7 +220,8 @@ pub fn surface_knot_membership(
 
 /// The point nearest `target` that a knot family reaches from `(u, v)`: `target` itself when
 /// a solution reaches it, else the nearest point over the one-direction families of both
-/// directions (module docs); `None` when nothing is reachable.
+/// directions and the mixed moves ([`super::nearest`]; module docs); `None` when nothing is
+/// reachable.
 pub fn nearest_surface_knot_target(
     surface: &Surface,
     u: f64,
@@ -259,6 +260,9 @@ pub fn nearest_surface_knot_target(
                 offer(found.point);
             }
         }
+    }
+    if let Some((_, point)) = super::nearest::nearest_mixed(surface, u, v, target, &options) {
+        offer(point);
     }
     best.map(|(_, point)| point)
 }
