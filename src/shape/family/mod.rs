@@ -19,7 +19,7 @@ pub(crate) mod roots;
 pub(crate) mod solve;
 pub(crate) mod tensor;
 
-pub use nearest::{FamilyNearest, nearest_across_families};
+pub use nearest::{FamilyNearest, nearest_across_families, nearest_solution_across_families};
 pub use outline::Outline;
 pub use problems::{Family, FamilyChoice, FamilyNotApplicable, FamilyProblem};
 pub use regions::{FamilyRegions, SetRegion, family_regions};

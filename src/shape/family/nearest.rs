@@ -61,6 +61,36 @@ pub fn nearest_across_families(
     choice: FamilyChoice,
     target: Point,
 ) -> Option<FamilyNearest> {
+    let mut solution = nearest_solution_across_families(query, choice, target)?;
+    let reached = solution.point;
+    solution.residual = 0.0;
+    // Every family's solutions at the point reached (on the edge of the reach, usually: the
+    // most expensive place for the solver, near a fold).
+    let FamilyOutcome { solutions, .. } = solve_families(query, choice, reached);
+    let mut all = vec![solution];
+    for other in solutions {
+        if !all.iter().any(|s| s.knots == other.knots) {
+            all.push(other);
+        }
+    }
+    for s in &mut all {
+        s.residual = distance(s.point, reached);
+    }
+    Some(FamilyNearest {
+        point: reached,
+        solutions: all,
+    })
+}
+
+/// The nearest point the requested families reach and the one solution found reaching it
+/// (its `point`), without the other families' solutions there that
+/// [`nearest_across_families`] adds: for a caller that wants the point only (the surfaces'
+/// nearest point over both iso-curves).
+pub fn nearest_solution_across_families(
+    query: &ShapeQuery,
+    choice: FamilyChoice,
+    target: Point,
+) -> Option<KnotSolution> {
     let curve = query.curve;
     let problems = family_problems(query, choice);
     let mut candidates: Vec<Candidate> = Vec::new();
@@ -109,7 +139,7 @@ pub fn nearest_across_families(
             certified: false,
         };
         let accepted = 1e-9 * super::problems::extent(&problem.control_points()) + 1e-12;
-        let Some(mut solution) = full_solution(
+        if let Some(solution) = full_solution(
             query,
             problem,
             local,
@@ -117,25 +147,9 @@ pub fn nearest_across_families(
             &root,
             point,
             accepted,
-        ) else {
-            continue;
-        };
-        let reached = solution.point;
-        solution.residual = 0.0;
-        let FamilyOutcome { solutions, .. } = solve_families(query, choice, reached);
-        let mut all = vec![solution];
-        for other in solutions {
-            if !all.iter().any(|s| s.knots == other.knots) {
-                all.push(other);
-            }
+        ) {
+            return Some(solution);
         }
-        for s in &mut all {
-            s.residual = distance(s.point, reached);
-        }
-        return Some(FamilyNearest {
-            point: reached,
-            solutions: all,
-        });
     }
     None
 }

@@ -4,7 +4,7 @@
 //!
 //! The one-direction families' regions and nearest points are the curve families' own on the
 //! iso-curve ([`crate::shape::family::family_regions`],
-//! [`crate::shape::family::nearest_across_families`], and for a cubic's envelope pairs
+//! [`crate::shape::family::nearest_solution_across_families`], and for a cubic's envelope pairs
 //! [`crate::shape::nearest_reachable`]): their points are the surface's at `(ũ, ṽ)` with the
 //! same knots. The mixed moves reach a solid (three knots, 3D): they are not drawn; their
 //! nearest point is searched ([`super::nearest`], verified by the mixed solver).
@@ -13,7 +13,9 @@ use super::iso::{iso_curve_along, iso_query, movable};
 use super::{
     SurfaceKnotFamily, SurfaceKnotOptions, SurfaceKnotSolution, snap, solve_surface_knots_with,
 };
-use crate::shape::family::{FamilyChoice, KnotSet, family_regions, nearest_across_families};
+use crate::shape::family::{
+    FamilyChoice, KnotSet, family_regions, nearest_solution_across_families,
+};
 use crate::shape::{PolygonOptions, Side, nearest_reachable};
 use crate::spline::vector::{Point, distance};
 use crate::surface::{Direction, Surface};
@@ -252,7 +254,8 @@ pub fn nearest_surface_knot_target(
         }
         let curve = iso_curve_along(surface, direction, u, v);
         let query = iso_query(&curve, direction, u, v, &options);
-        if let Some(found) = nearest_across_families(&query, options.iso_families, target) {
+        if let Some(found) = nearest_solution_across_families(&query, options.iso_families, target)
+        {
             offer(found.point);
         }
         if curve.degree() == 3 {
