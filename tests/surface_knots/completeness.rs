@@ -70,6 +70,22 @@ fn parts(knots: &[f64], p: usize, t: f64, size: usize) -> Vec<Part> {
     out
 }
 
+/// Every mixed set with two unknown knots along `pair`: the pair direction's parts (size 2)
+/// with each of the other direction's (size 1).
+fn mixed_parts(net: &Net, pair: Direction, (u, v): (f64, f64)) -> Vec<(Part, Part)> {
+    let u_side = (&net.knots_u, net.degrees.0, u);
+    let v_side = (&net.knots_v, net.degrees.1, v);
+    let ((ka, pa, ta), (kb, pb, tb)) = match pair {
+        Direction::U => (u_side, v_side),
+        Direction::V => (v_side, u_side),
+    };
+    let singles = parts(kb, pb, tb, 1);
+    parts(ka, pa, ta, 2)
+        .into_iter()
+        .flat_map(|a| singles.iter().map(move |b| (a.clone(), b.clone())))
+        .collect()
+}
+
 /// Whether a full knot vector keeps the rules: ordered, `t` in a non-empty span between the
 /// original span's knots `j` and `j + 1`, interior multiplicities ≤ p.
 fn valid(knots: &[f64], p: usize, t: f64, j: usize) -> bool {
@@ -273,35 +289,15 @@ fn complete(net: &Net, (u, v): (f64, f64), target: [f64; 3]) -> (usize, usize) {
         solve_surface_knots_with(&surface, u, v, target, &options);
     let mut brute = 0;
     for pair in [Direction::U, Direction::V] {
-        let (ka, pa, ta, kb, pb, tb) = match pair {
-            Direction::U => (
-                &net.knots_u,
-                net.degrees.0,
-                u,
-                &net.knots_v,
-                net.degrees.1,
-                v,
-            ),
-            Direction::V => (
-                &net.knots_v,
-                net.degrees.1,
-                v,
-                &net.knots_u,
-                net.degrees.0,
-                u,
-            ),
-        };
-        for a in parts(ka, pa, ta, 2) {
-            for b in parts(kb, pb, tb, 1) {
-                for (fu, fv) in brute_force(net, (u, v), target, pair, &a, &b) {
-                    brute += 1;
-                    let hit = solutions.iter().any(|s| {
-                        s.family == SurfaceKnotFamily::Mixed { pair }
-                            && close(s.knots_u.as_deref().unwrap_or(&net.knots_u), &fu, 1e-6)
-                            && close(s.knots_v.as_deref().unwrap_or(&net.knots_v), &fv, 1e-6)
-                    });
-                    assert!(hit, "missed {pair:?} {a:?} {b:?}: u {fu:?} v {fv:?}");
-                }
+        for (a, b) in mixed_parts(net, pair, (u, v)) {
+            for (fu, fv) in brute_force(net, (u, v), target, pair, &a, &b) {
+                brute += 1;
+                let hit = solutions.iter().any(|s| {
+                    s.family == SurfaceKnotFamily::Mixed { pair }
+                        && close(s.knots_u.as_deref().unwrap_or(&net.knots_u), &fu, 1e-6)
+                        && close(s.knots_v.as_deref().unwrap_or(&net.knots_v), &fv, 1e-6)
+                });
+                assert!(hit, "missed {pair:?} {a:?} {b:?}: u {fu:?} v {fv:?}");
             }
         }
     }
@@ -351,68 +347,46 @@ fn mixed_moves_find_every_brute_force_solution() {
 fn brute_force_nearest_mixed(net: &Net, (u, v): (f64, f64), target: [f64; 3]) -> f64 {
     let mut best = f64::INFINITY;
     for pair in [Direction::U, Direction::V] {
-        let (ka, pa, ta, kb, pb, tb) = match pair {
-            Direction::U => (
-                &net.knots_u,
-                net.degrees.0,
-                u,
-                &net.knots_v,
-                net.degrees.1,
-                v,
-            ),
-            Direction::V => (
-                &net.knots_v,
-                net.degrees.1,
-                v,
-                &net.knots_u,
-                net.degrees.0,
-                u,
-            ),
-        };
-        for a in parts(ka, pa, ta, 2) {
-            for b in parts(kb, pb, tb, 1)
-                .into_iter()
-                .filter(|b| b.moved.is_some())
-            {
-                let (pu_part, pv_part) = match pair {
-                    Direction::U => (&a, &b),
-                    Direction::V => (&b, &a),
-                };
-                let (mut ku, mut kv) = (net.knots_u.clone(), net.knots_v.clone());
-                let span = |k: &[f64], p: usize, t: f64| {
-                    let n = k.len() - p - 1;
-                    (p..n).rfind(|&j| k[j] <= t && k[j] < k[j + 1]).unwrap()
-                };
-                let (ju, jv) = (span(&ku, net.degrees.0, u), span(&kv, net.degrees.1, v));
-                if let Some(r) = pu_part.moved {
-                    ku[r] = u;
-                }
-                if let Some(s) = pv_part.moved {
-                    kv[s] = v;
-                }
-                let mut unknowns: Vec<(bool, usize)> =
-                    pu_part.unknowns.iter().map(|&k| (true, k)).collect();
-                unknowns.extend(pv_part.unknowns.iter().map(|&k| (false, k)));
-                let mut boxes = bounds(&ku, &pu_part.unknowns);
-                boxes.extend(bounds(&kv, &pv_part.unknowns));
-                const G: usize = 9;
-                for i in 0..G * G * G {
-                    let index = [i % G, (i / G) % G, i / (G * G)];
-                    let (mut a_knots, mut b_knots) = (ku.clone(), kv.clone());
-                    for (k, &(is_u, m)) in unknowns.iter().enumerate() {
-                        let value = boxes[k].0
-                            + (boxes[k].1 - boxes[k].0) * index[k] as f64 / (G - 1) as f64;
-                        if is_u {
-                            a_knots[m] = value;
-                        } else {
-                            b_knots[m] = value;
-                        }
+        for (a, b) in mixed_parts(net, pair, (u, v)) {
+            if b.moved.is_none() {
+                continue;
+            }
+            let (pu_part, pv_part) = match pair {
+                Direction::U => (&a, &b),
+                Direction::V => (&b, &a),
+            };
+            let (mut ku, mut kv) = (net.knots_u.clone(), net.knots_v.clone());
+            let span = |k: &[f64], p: usize, t: f64| {
+                let n = k.len() - p - 1;
+                (p..n).rfind(|&j| k[j] <= t && k[j] < k[j + 1]).unwrap()
+            };
+            let (ju, jv) = (span(&ku, net.degrees.0, u), span(&kv, net.degrees.1, v));
+            if let Some(r) = pu_part.moved {
+                ku[r] = u;
+            }
+            if let Some(s) = pv_part.moved {
+                kv[s] = v;
+            }
+            let mut unknowns: Vec<(bool, usize)> =
+                pu_part.unknowns.iter().map(|&k| (true, k)).collect();
+            unknowns.extend(pv_part.unknowns.iter().map(|&k| (false, k)));
+            let mut boxes = bounds(&ku, &pu_part.unknowns);
+            boxes.extend(bounds(&kv, &pv_part.unknowns));
+            const G: usize = 9;
+            for i in 0..G * G * G {
+                let index = [i % G, (i / G) % G, i / (G * G)];
+                let (mut a_knots, mut b_knots) = (ku.clone(), kv.clone());
+                for (k, &(is_u, m)) in unknowns.iter().enumerate() {
+                    let value =
+                        boxes[k].0 + (boxes[k].1 - boxes[k].0) * index[k] as f64 / (G - 1) as f64;
+                    if is_u {
+                        a_knots[m] = value;
+                    } else {
+                        b_knots[m] = value;
                     }
-                    if valid(&a_knots, net.degrees.0, u, ju)
-                        && valid(&b_knots, net.degrees.1, v, jv)
-                    {
-                        best = best.min(distance(net.point_with(&a_knots, &b_knots, u, v), target));
-                    }
+                }
+                if valid(&a_knots, net.degrees.0, u, ju) && valid(&b_knots, net.degrees.1, v, jv) {
+                    best = best.min(distance(net.point_with(&a_knots, &b_knots, u, v), target));
                 }
             }
         }
