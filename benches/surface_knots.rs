@@ -1,6 +1,7 @@
 //! Criterion benchmark of the knot method for surfaces (docs/performance.md, docs/method.md
 //! §48): a knots-only solve of a bicubic 20 × 20-pole surface — every iso-curve family in
-//! both directions and the mixed moves — for a 3D target off the tangent plane, beside
+//! both directions and the mixed moves — for a 3D target off the tangent plane (and of the
+//! same net at degrees 4 and 5, whose mixed moves solve a curved pair), beside
 //! today's cubic curve knots solve (the envelope pairs Ω1–Ω6 of both sides with their
 //! deviation, as `benches/knot_families.rs` measures it) in the same run; the iso families
 //! and the mixed moves are also timed alone to show where the time goes.
@@ -32,6 +33,11 @@ use knotshape::surface::{Surface, SurfaceLimits};
 /// A smooth bicubic of 20 × 20 poles over `[0, 19]²` with a wavy height, uneven clamped
 /// knots in both directions.
 pub fn bicubic_20() -> Surface {
+    wavy_20(3)
+}
+
+/// [`bicubic_20`]'s net and knot spacing at degree `p` in both directions.
+pub fn wavy_20(p: usize) -> Surface {
     let n = 20;
     let poles: Vec<Vec<[f64; 3]>> = (0..n)
         .map(|i| {
@@ -48,18 +54,18 @@ pub fn bicubic_20() -> Surface {
         })
         .collect();
     let knots = |shift: f64| {
-        let mut k = vec![0.0; 4];
-        let interior = n - 4;
+        let mut k = vec![0.0; p + 1];
+        let interior = n - p - 1;
         k.extend((1..=interior).map(|i| {
             let s = i as f64 / (interior + 1) as f64;
             s + shift * (std::f64::consts::PI * 3.0 * s).sin() / (interior + 1) as f64
         }));
-        k.extend([1.0; 4]);
+        k.extend(vec![1.0; p + 1]);
         k
     };
     let (ku, kv) = (knots(0.3), knots(-0.25));
     Surface::from_knot_forms(
-        (3, 3),
+        (p, p),
         &poles,
         (KnotForm::Flat(&ku), KnotForm::Flat(&kv)),
         None::<&[Vec<f64>]>,
@@ -83,7 +89,17 @@ fn bench_surface_knots(c: &mut Criterion) {
         b.iter(|| solve(black_box(&query), black_box(&target), options).unwrap())
     });
 
-    let surface = bicubic_20();
+    for p in [3, 4, 5] {
+        every_family(c, p);
+    }
+}
+
+/// The knots-only solve of [`wavy_20`] of degree `p` for a target off the tangent plane that
+/// a mixed move reaches (every degree), and for `p = 3` the families alone and the nearest
+/// point of a target out of reach.
+fn every_family(c: &mut Criterion, p: usize) {
+    let surface = wavy_20(p);
+    let name = ["bicubic", "biquartic", "biquintic"][p - 3];
     let (u, v) = PICK;
     let point = surface.point(u, v);
     let partials = surface.partials(u, v, 1);
@@ -116,7 +132,7 @@ fn bench_surface_knots(c: &mut Criterion) {
     };
     let found = solve_surface_knots(&surface, u, v, target, true);
     eprintln!(
-        "bicubic 20 × 20 at {PICK:?}, target offset {scale:.4}: {} solutions ({} mixed, {} iso triples)",
+        "{name} 20 × 20 at {PICK:?}, target offset {scale:.4}: {} solutions ({} mixed, {} iso triples)",
         found.len(),
         found
             .iter()
@@ -133,9 +149,12 @@ fn bench_surface_knots(c: &mut Criterion) {
             ))
             .count()
     );
-    c.bench_function("surface_knots/bicubic_20x20_every_family", |b| {
+    c.bench_function(&format!("surface_knots/{name}_20x20_every_family"), |b| {
         b.iter(|| solve_surface_knots(black_box(&surface), u, v, black_box(target), true))
     });
+    if p != 3 {
+        return;
+    }
     let mixed_only = SurfaceKnotOptions {
         iso_u: false,
         iso_v: false,

@@ -477,7 +477,7 @@ fn refine_univariate(
 /// Whether two neighbouring unknowns (local indices `m`, `m + 1`) are out of order on the
 /// whole box (lower corner `lo`, widths `width` in the unit box): each knot is affine in
 /// each variable, so its extremes over the box lie at the box's corners.
-fn disordered(
+pub(crate) fn disordered(
     problem: &LocalProblem,
     search: &SearchBox,
     lo: [f64; MAX_VARIABLES],
@@ -654,7 +654,11 @@ fn polish(
 /// [`CLAMP_TOLERANCE`] of the unknown's room is taken as met), unknowns within
 /// [`KNOT_TOLERANCE`] of their old value snapped back to it; `None` when it lies outside, the
 /// knots are not monotone, or `ũ` leaves its (non-empty) span.
-fn admissible(problem: &LocalProblem, search: &SearchBox, mut knots: Vec<f64>) -> Option<Vec<f64>> {
+pub(crate) fn admissible(
+    problem: &LocalProblem,
+    search: &SearchBox,
+    mut knots: Vec<f64>,
+) -> Option<Vec<f64>> {
     let q = problem.degree;
     let scale = problem.knots[2 * q + 1] - problem.knots[0];
     for (k, &m) in search.unknowns.iter().enumerate() {

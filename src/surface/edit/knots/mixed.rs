@@ -1,9 +1,9 @@
 //! Mixed moves (docs/method.md §46): knots in both directions for 3D targets.
 //!
 //! One direction `A` gets two unknown knots, the other `B` one. In `A` the local problem is
-//! the envelope's (`a_r := ã`, both sides) on a bicubic's `A` (degree 3, `q = 2`) or the
-//! direct one on degree 2 (`q = 2` too); in `B` the envelope (`b_s := b̃`, both sides) or the
-//! direct problem (any degree ≥ 2). Then
+//! the envelope's (`a_r := ã`, both sides; degree ≥ 3, `q = p − 1`) or the direct one on
+//! degree 2 (`q = 2`); in `B` the envelope (`b_s := b̃`, both sides) or the direct problem
+//! (any degree ≥ 2). For `q = 2`
 //!
 //! ```text
 //! S(ã, b̃) = Σ_k N_k(ã; a, a') D_k(c),   D_k(c) = Σ_l h_kl M_l(b̃; c)   (homogeneous),
@@ -26,9 +26,11 @@
 //! closed form on the triangle `D_k(c)` ([`crate::shape::family::roots::solve_unknowns`],
 //! at most one solution per pair). Every admissible solution of a set is found, except where
 //! the subdivision's box budget runs out or a root of `g` is not simple (then a candidate is
-//! still tried, not certified). Pair directions of degree ≥ 4 (`q ≥ 3`: the pair reaches a
-//! curved patch, no plane condition) get no mixed moves.
+//! still tried, not certified). A pair direction of degree ≥ 4 (`q ≥ 3`: the pair reaches a
+//! curved patch, no plane condition) solves its three unknowns together
+//! ([`super::curved`]).
 
+use super::curved::{PairBasis, curved_roots, pair_basis, single_rows};
 use super::iso::{iso_curve_along, movable};
 use super::plane::plane_roots;
 use super::{
@@ -62,9 +64,10 @@ pub(crate) struct Side1 {
 }
 
 /// The local problems of `curve` at `t` usable in a mixed move: for the pair direction
-/// (`pair = true`) those with `q = 2` (the envelope of a cubic, both sides; the direct
-/// problem of a quadratic), for the single direction every envelope side and, when `direct`,
-/// the direct problem. Problems that do not apply (domain end, empty span) are left out; collinear
+/// (`pair = true`) the envelope on both sides (degree ≥ 3: `q = p − 1`, the plane condition
+/// for a cubic, the curved system of [`super::curved`] above) or a quadratic's direct
+/// problem (`q = 2`), for the single direction every envelope side and, when `direct`, the
+/// direct problem. Problems that do not apply (domain end, empty span) are left out; collinear
 /// iso-curve poles are not a reason here (the rows' poles are used instead).
 pub(crate) fn direction_problems(
     curve: &Curve,
@@ -75,7 +78,7 @@ pub(crate) fn direction_problems(
 ) -> Vec<Side1> {
     let p = curve.degree();
     let mut problems = Vec::new();
-    let envelope = if pair { p == 3 } else { p >= 2 };
+    let envelope = if pair { p >= 3 } else { p >= 2 };
     if envelope {
         for side in [Side::Right, Side::Left] {
             problems.push(envelope_problem(curve, t, side, keep_domain));
@@ -177,8 +180,53 @@ pub(crate) fn solve_mixed(
     let b_problems = direction_problems(&curve_b, tb, keep, false, options.mixed_direct);
     for a in direction_problems(&curve_a, ta, keep, true, false) {
         let pairs = unknown_sets(&a.local, 2, &curve_a, keep);
+        // A curved pair's basis numerators, shared by every `B` side.
+        let bases: Vec<(&Vec<usize>, Option<PairBasis>)> = if a.local.degree > 2 {
+            pairs
+                .iter()
+                .map(|set| (set, pair_basis(&a.local, set)))
+                .collect()
+        } else {
+            Vec::new()
+        };
         for b in &b_problems {
             let shifted = rows_of(net, &a, b, tb, target);
+            if a.local.degree > 2 {
+                // A curved pair (degree ≥ 4): the three unknowns together.
+                for m in singles(&b.local, &curve_b, keep) {
+                    let Some(single) = single_rows(&shifted, m) else {
+                        continue;
+                    };
+                    for (set, pair) in &bases {
+                        let Some(pair) = pair else {
+                            continue;
+                        };
+                        for root in curved_roots(&a.local, pair, &shifted, &single, &mut budget) {
+                            let move_ = Move {
+                                a: &a,
+                                b,
+                                set,
+                                m,
+                                a_local: root.a_local,
+                                b_local: root.b_local,
+                            };
+                            if let Some(solution) = move_.solution(
+                                net,
+                                &curve_a,
+                                &curve_b,
+                                (u, v),
+                                target,
+                                accepted,
+                                keep,
+                                &found,
+                            ) {
+                                found.push(solution);
+                            }
+                        }
+                    }
+                }
+                continue;
+            }
             let rows = rows_of(net, &a, b, tb, [0.0; 3]);
             for m in singles(&b.local, &curve_b, keep) {
                 for c in plane_roots(&shifted, m, &mut budget) {

@@ -13,6 +13,7 @@
 //! Pure geometry: knots are the surface's full (internal) vectors; the caller's convention
 //! is the HTTP edge's business.
 
+mod curved;
 mod iso;
 mod mixed;
 mod nearest;
