@@ -8,42 +8,20 @@
 
 #![allow(clippy::unwrap_used)]
 
+#[path = "common/real_surfaces.rs"]
+mod real_surfaces;
 mod surface_edit_common;
-
-use std::io::Read;
 
 use knotshape::surface::edit::{
     FixedNet, SurfaceConstraints, SurfaceEditOptions, SurfaceEditRequest, SurfaceMethodKind,
     surface_edit,
 };
-use serde::Deserialize;
+use real_surfaces::SurfaceData;
 use surface_edit_common::{Plain, distance};
 
-#[derive(Deserialize)]
-struct Entry {
-    id: String,
-    degree_u: usize,
-    degree_v: usize,
-    poles: Vec<Vec<[f64; 3]>>,
-    #[serde(default)]
-    weights: Option<Vec<Vec<f64>>>,
-    knots_u: Vec<f64>,
-    knots_v: Vec<f64>,
-}
-
-#[derive(Deserialize)]
-struct File {
-    surfaces: Vec<Entry>,
-}
-
-fn corpus() -> Vec<Entry> {
-    let path =
-        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/real_surfaces.json.gz");
-    let mut text = String::new();
-    flate2::read::GzDecoder::new(std::fs::File::open(path).unwrap())
-        .read_to_string(&mut text)
-        .unwrap();
-    serde_json::from_str::<File>(&text).unwrap().surfaces
+/// Every surface of the corpus.
+fn corpus() -> Vec<SurfaceData> {
+    real_surfaces::load()
 }
 
 fn unit(a: [f64; 3]) -> Option<[f64; 3]> {

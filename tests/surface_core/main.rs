@@ -8,6 +8,8 @@ mod common;
 #[path = "../spline_core/exact.rs"]
 #[allow(dead_code)]
 mod curve_exact;
+#[path = "../common/real_surfaces.rs"]
+mod real_surfaces;
 
 mod closest;
 mod corpus;

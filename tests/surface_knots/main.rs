@@ -8,5 +8,7 @@ mod mixed;
 mod properties;
 mod random;
 mod real;
+#[path = "../common/real_surfaces.rs"]
+mod real_surfaces;
 mod reference;
 mod worked_example;

@@ -3,43 +3,18 @@
 //! each direction of degree ≥ 3 with interior knots (reachable by an envelope pair of that
 //! direction) and a 3D offset; every solution is checked by the independent evaluator.
 
-use std::io::Read;
-
 use knotshape::shape::family::Family;
 use knotshape::surface::Direction;
 use knotshape::surface::edit::knots::{SurfaceKnotFamily, solve_surface_knots};
-use serde::Deserialize;
 
 use crate::properties::check_solution;
 use crate::random::Rng;
+use crate::real_surfaces::SurfaceData;
 use crate::reference::Net;
 
-#[derive(Deserialize)]
-struct Data {
-    id: String,
-    degree_u: usize,
-    degree_v: usize,
-    poles: Vec<Vec<[f64; 3]>>,
-    #[serde(default)]
-    weights: Option<Vec<Vec<f64>>>,
-    knots_u: Vec<f64>,
-    knots_v: Vec<f64>,
-}
-
-#[derive(Deserialize)]
-struct File {
-    surfaces: Vec<Data>,
-}
-
-fn corpus() -> Vec<Data> {
-    let path =
-        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/real_surfaces.json.gz");
-    let file = std::fs::File::open(&path).unwrap();
-    let mut text = String::new();
-    flate2::read::GzDecoder::new(file)
-        .read_to_string(&mut text)
-        .unwrap();
-    serde_json::from_str::<File>(&text).unwrap().surfaces
+/// Every surface of the corpus.
+fn corpus() -> Vec<SurfaceData> {
+    crate::real_surfaces::load()
 }
 
 /// The iso-curve's control points along `direction` through `(u, v)`, by the reference
