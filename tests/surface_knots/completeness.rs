@@ -463,3 +463,77 @@ fn the_nearest_point_is_no_farther_than_a_brute_force_grid_over_the_mixed_moves(
         "{beyond_one_direction} of 6 by mixed moves"
     );
 }
+
+/// Planted curved-pair moves: on random nets whose pair direction has degree 4 or 5, a mixed
+/// set's three unknown knots are moved to random values inside their boxes (the rules kept),
+/// the target is the reference evaluator's point of the planted knots, and the solver's mixed
+/// moves of that orientation hold the planted knots.
+#[test]
+fn planted_moves_of_a_curved_pair_are_recovered() {
+    let mut recovered = 0;
+    for seed in 0..8u64 {
+        let mut rng = Rng::new(0xFACE + seed);
+        let degrees = [(4, 3), (5, 2), (4, 4), (5, 3)][seed as usize % 4];
+        let net = net(&mut rng, degrees, (3, 3), seed % 2 == 1);
+        let u = parameter(&mut rng, &net.knots_u, degrees.0);
+        let v = parameter(&mut rng, &net.knots_v, degrees.1);
+        let sets = mixed_parts(&net, Direction::U, (u, v));
+        assert!(!sets.is_empty(), "seed {seed}: no mixed set");
+        let (a, b) = &sets[rng.int(0, sets.len() - 1)];
+        let (mut ku, mut kv) = (net.knots_u.clone(), net.knots_v.clone());
+        if let Some(r) = a.moved {
+            ku[r] = u;
+        }
+        if let Some(s) = b.moved {
+            kv[s] = v;
+        }
+        // Each unknown anywhere strictly inside its box, the pair in order.
+        let boxes_u = bounds(&ku, &a.unknowns);
+        let box_v = bounds(&kv, &b.unknowns)[0];
+        let mut draws: Vec<f64> = boxes_u
+            .iter()
+            .map(|&(lo, hi)| rng.range(lo + 0.05 * (hi - lo), hi - 0.05 * (hi - lo)))
+            .collect();
+        if a.unknowns[1] == a.unknowns[0] + 1 && draws[0] > draws[1] {
+            draws.swap(0, 1);
+        }
+        for (&k, &value) in a.unknowns.iter().zip(&draws) {
+            ku[k] = value;
+        }
+        kv[b.unknowns[0]] = rng.range(
+            box_v.0 + 0.05 * (box_v.1 - box_v.0),
+            box_v.1 - 0.05 * (box_v.1 - box_v.0),
+        );
+        let span = |k: &[f64], p: usize, t: f64| {
+            let n = k.len() - p - 1;
+            (p..n).rfind(|&j| k[j] <= t && k[j] < k[j + 1]).unwrap()
+        };
+        let (ju, jv) = (
+            span(&net.knots_u, degrees.0, u),
+            span(&net.knots_v, degrees.1, v),
+        );
+        if !valid(&ku, degrees.0, u, ju) || !valid(&kv, degrees.1, v, jv) {
+            continue;
+        }
+        let target = net.point_with(&ku, &kv, u, v);
+        let options = SurfaceKnotOptions {
+            mixed_direct: true,
+            ..SurfaceKnotOptions::all(true)
+        };
+        let solutions = solve_surface_knots_with(&net.surface(), u, v, target, &options);
+        let found = solutions.iter().any(|s| {
+            s.family == (SurfaceKnotFamily::Mixed { pair: Direction::U })
+                && close(s.knots_u.as_deref().unwrap(), &ku, 1e-7)
+                && close(s.knots_v.as_deref().unwrap(), &kv, 1e-7)
+        });
+        assert!(
+            found,
+            "seed {seed}: planted {a:?} {b:?} not recovered: u {ku:?} v {kv:?}"
+        );
+        recovered += 1;
+    }
+    assert!(
+        recovered >= 6,
+        "{recovered} of 8 planted moves were admissible"
+    );
+}
