@@ -1,10 +1,11 @@
 //! Reach of the surface knot families (docs/method.md §48; MATH.md §8.5, knot-family.md §6):
 //! the fraction of a ball of radius `f·L` around `S(ũ, ṽ)` that the solve reaches, by family,
-//! on random bicubics. Prints a Markdown table; no timing.
+//! on random bicubics (or of degree 4 or 5). Prints a Markdown table; no timing.
 //!
 //! `cargo bench --bench surface_knot_reach` (options after `--`: `--surfaces N`, default 12;
 //! `--grid M`, targets on an `M³` grid of the ball's cube, default 11 as in the study;
-//! `--mixed-direct`: the mixed moves' single knot from the direct problem too).
+//! `--mixed-direct`: the mixed moves' single knot from the direct problem too; `--degree P`:
+//! biquartics or biquintics instead, on `4P × 4P` nets).
 //!
 //! The samples follow the study's `check14_surface_reach3d.py`: 12 × 12 poles over a unit grid
 //! jittered by `0.15·N(0, 1)` in x and y, height a doubly cumulated `0.3·N(0, 1)` times 0.3,
@@ -68,7 +69,10 @@ fn main() {
         ..SurfaceKnotOptions::all(true)
     };
     let mut rng = Rng(18);
-    let (n, p) = (12usize, 3usize);
+    // Degree 3 as in the study; `--degree 4` or `5` (the mixed moves' curved pair) on nets
+    // large enough for the picked span's local net and its neighbours.
+    let p = option("--degree", 3);
+    let n = 12usize.max(4 * p);
     let radii = [0.05, 0.15];
     let mut sums = vec![[0.0f64; 8]; radii.len()];
     for _ in 0..count {
@@ -77,7 +81,7 @@ fn main() {
             interior.sort_by(f64::total_cmp);
             let mut k = vec![0.0; p + 1];
             k.extend(interior);
-            k.extend([1.0; 4]);
+            k.extend(vec![1.0; p + 1]);
             k
         };
         let (ku, kv) = (knots(&mut rng), knots(&mut rng));
@@ -180,7 +184,7 @@ fn main() {
         }
     }
     println!(
-        "random bicubics: {count} surfaces, {grid}³ grid of targets in the ball, domain kept, mixed_direct {}\n",
+        "random surfaces of degree {p} in both directions ({n} x {n} poles): {count} surfaces, {grid}³ grid of targets in the ball, domain kept, mixed_direct {}\n",
         options.mixed_direct
     );
     print!("| family |");
