@@ -8,7 +8,9 @@
 //!   likewise in `v` with `E_l(ũ) = Σ_i d_il N_i(ũ)`. The curve solver itself runs on the
 //!   iso-curve ([`crate::shape::family::solve_families`]).
 //! * **Mixed moves** ([`mixed`]): knots in both directions for 3D targets, two unknown knots
-//!   in one direction and one in the other, after the envelope step in both.
+//!   in one direction and one in the other, after the envelope step in both: on a pair
+//!   direction of degree 2 or 3 by the plane condition (`plane.rs`) and the closed forms, on
+//!   degree 4 or more by the three unknowns' polynomial system (`curved.rs`).
 //!
 //! Pure geometry: knots are the surface's full (internal) vectors; the caller's convention
 //! is the HTTP edge's business.
