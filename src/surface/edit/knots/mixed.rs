@@ -177,6 +177,19 @@ pub(crate) fn solve_mixed(
     let accepted = accepted_residual(surface, u, v, target);
     let mut budget = MIXED_BOXES;
     let mut found: Vec<SurfaceKnotSolution> = Vec::new();
+    // A solved move as a surface solution, when the rules keep it and it is new.
+    let solution_of = |move_: &Move, found: &[SurfaceKnotSolution]| {
+        move_.solution(
+            net,
+            &curve_a,
+            &curve_b,
+            (u, v),
+            target,
+            accepted,
+            keep,
+            found,
+        )
+    };
     let b_problems = direction_problems(&curve_b, tb, keep, false, options.mixed_direct);
     for a in direction_problems(&curve_a, ta, keep, true, false) {
         let pairs = unknown_sets(&a.local, 2, &curve_a, keep);
@@ -210,16 +223,7 @@ pub(crate) fn solve_mixed(
                                 a_local: root.a_local,
                                 b_local: root.b_local,
                             };
-                            if let Some(solution) = move_.solution(
-                                net,
-                                &curve_a,
-                                &curve_b,
-                                (u, v),
-                                target,
-                                accepted,
-                                keep,
-                                &found,
-                            ) {
+                            if let Some(solution) = solution_of(&move_, &found) {
                                 found.push(solution);
                             }
                         }
@@ -259,19 +263,9 @@ pub(crate) fn solve_mixed(
                                 a_local: root.knots,
                                 b_local: b_local.clone(),
                             };
-                            let Some(solution) = move_.solution(
-                                net,
-                                &curve_a,
-                                &curve_b,
-                                (u, v),
-                                target,
-                                accepted,
-                                keep,
-                                &found,
-                            ) else {
-                                continue;
-                            };
-                            found.push(solution);
+                            if let Some(solution) = solution_of(&move_, &found) {
+                                found.push(solution);
+                            }
                         }
                     }
                 }
