@@ -50,7 +50,6 @@ const NEIGHBOURHOOD_BOXES: usize = 64;
 /// variable: on larger ones the interval Jacobian is too loose for it to succeed.
 const KRAWCZYK_WIDTH: f64 = 0.25;
 
-#[cfg(test)]
 /// Newton steps at most in [`refine`].
 const NEWTON_STEPS: usize = 12;
 
@@ -592,8 +591,7 @@ fn krawczyk(
 /// Newton's method on the polynomial system itself from `start` (unit-box coordinates),
 /// kept in the unit box; a step that fails to lower the residual ends it. The knot solvers
 /// refine on de Boor instead ([`super::roots`]); this serves where the system is all there
-/// is.
-#[cfg(test)]
+/// is (the regions' outlines, the surfaces' curved mixed moves).
 pub fn refine(system: &Tensor, n: usize, start: [f64; MAX_VARIABLES]) -> [f64; MAX_VARIABLES] {
     let derivatives: Vec<Tensor> = (0..n).map(|k| system.derivative(k)).collect();
     let size = |v: &[f64; MAX_VARIABLES]| v[..n].iter().map(|x| x * x).sum::<f64>();

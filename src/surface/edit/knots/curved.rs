@@ -16,13 +16,10 @@
 //! Newton's method on `F`. `D_A, D_B, W > 0` on admissible knots, so the roots of `F` are
 //! exactly the mixed moves of the set.
 
-use crate::shape::family::isolate::{IsolationOptions, isolate};
+use crate::shape::family::isolate::{IsolationOptions, isolate, refine};
 use crate::shape::family::local::{LocalProblem, SearchBox};
 use crate::shape::family::roots::{SEARCH_MARGIN, TRIPLE_BOXES, admissible, disordered};
 use crate::shape::family::tensor::{MAX_VARIABLES, Tensor};
-
-/// Newton steps at most on `F`.
-const NEWTON_STEPS: usize = 40;
 
 /// One root of a curved mixed set: `A`'s local knots with the pair solved, `B`'s with `c`.
 pub(crate) struct CurvedRoot {
@@ -133,14 +130,13 @@ pub(crate) fn curved_roots(
     if isolation.roots.is_empty() {
         return Vec::new();
     }
-    let derivatives = [0, 1, 2].map(|k| system.derivative(k));
     let (c_lo, c_hi) = single.search.admissible[0];
     let m = single.search.unknowns[0];
     isolation
         .roots
         .iter()
         .filter_map(|root| {
-            let s = newton(&system, &derivatives, root.point);
+            let s = refine(&system, 3, root.point);
             let a_local = admissible(a, &pair.search, a.knots_at(&pair.search, [s[0], s[1], 0.0]))?;
             let mut b_local = shifted[0].knots_at(&single.search, [s[2], 0.0, 0.0]);
             b_local[m] = b_local[m].clamp(c_lo, c_hi);
@@ -170,62 +166,6 @@ fn in_third_variable(t: Tensor) -> Tensor {
         degrees: [0, 0, t.degrees[0]],
         ..t
     }
-}
-
-/// Newton's method on `F` (derivative tensors `derivatives`) from `start`, kept in the unit
-/// box; a step that does not lower `|F|` ends it.
-fn newton(f: &Tensor, derivatives: &[Tensor; 3], start: [f64; 3]) -> [f64; 3] {
-    let value = |s: [f64; 3]| {
-        let mut out = [0.0; 3];
-        f.evaluate(s, &mut out);
-        out
-    };
-    let norm = |r: [f64; 3]| r[0].hypot(r[1]).hypot(r[2]);
-    let (mut s, mut fs) = (start, value(start));
-    for _ in 0..NEWTON_STEPS {
-        if norm(fs) == 0.0 {
-            break;
-        }
-        let mut jacobian = [[0.0; 3]; 3];
-        for (k, derivative) in derivatives.iter().enumerate() {
-            let mut column = [0.0; 3];
-            derivative.evaluate(s, &mut column);
-            for c in 0..3 {
-                jacobian[c][k] = column[c];
-            }
-        }
-        let Some(step) = solve3(jacobian, fs) else {
-            break;
-        };
-        let next: [f64; 3] = std::array::from_fn(|k| (s[k] - step[k]).clamp(0.0, 1.0));
-        let f_next = value(next);
-        let (after, before) = (norm(f_next), norm(fs));
-        if after.is_nan() || after >= before {
-            break;
-        }
-        (s, fs) = (next, f_next);
-    }
-    s
-}
-
-/// `J⁻¹ r` by Cramer's rule; `None` when `J` is singular.
-fn solve3(j: [[f64; 3]; 3], r: [f64; 3]) -> Option<[f64; 3]> {
-    let det = |m: [[f64; 3]; 3]| {
-        m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
-            - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
-            + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])
-    };
-    let d = det(j);
-    if d == 0.0 || !d.is_finite() {
-        return None;
-    }
-    Some(std::array::from_fn(|k| {
-        let mut m = j;
-        for (row, value) in m.iter_mut().zip(r) {
-            row[k] = value;
-        }
-        det(m) / d
-    }))
 }
 
 #[cfg(test)]
