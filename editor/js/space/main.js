@@ -10,6 +10,9 @@ import { createEditor } from "./editing.js";
 import { buildSpacePanel, drawSpacePanel, VIEW_BUTTONS } from "./panel.js";
 import { boxOf, polesOf } from "./objects.js";
 
+/** Whether the browser dispatches `pointerrawupdate` (Chromium, in secure contexts). */
+const RAW_UPDATES = typeof window !== "undefined" && "onpointerrawupdate" in window;
+
 /** Zoom of one + or − key press. */
 const KEY_ZOOM = 1.25;
 
@@ -99,8 +102,17 @@ export function setupSpace(elements) {
       return;
     }
     event.stopImmediatePropagation();
-    editor.dragTo(pixelOf(event), event.altKey, event.timeStamp);
+    if (!RAW_UPDATES) editor.dragTo(pixelOf(event), event.altKey, event.timeStamp);
   }, { capture: true });
+  // A drag follows the pointer's raw updates where the browser has them: they are
+  // dispatched as they come, where `pointermove` waits for the next frame (Chromium aligns
+  // it with the frames, which come late while WebGL frames are presented in software).
+  if (RAW_UPDATES) {
+    canvas.addEventListener("pointerrawupdate", (event) => {
+      if (!gesture || event.pointerId !== gesture.pointerId) return;
+      editor.dragTo(pixelOf(event), event.altKey, event.timeStamp);
+    });
+  }
   canvas.addEventListener("pointerleave", () => {
     canvas.dataset.hover = "false";
   });

@@ -20,8 +20,8 @@ export const COLOURS = {
   weightRegion: 0x7b3294,
 };
 
-/** Iso-line samples per knot span (at least 8 per line). */
-const ISO_SAMPLES_PER_SPAN = 12;
+/** The most chords per knot span an iso-line gets (isoSpans). */
+const ISO_MAX_SAMPLES_PER_SPAN = 12;
 
 /** The box `[min, max]` of points. */
 export function boxOf(points) {
@@ -76,26 +76,82 @@ function netSegments(item) {
 }
 
 /** The iso-lines of a plain surface at its distinct knots inside the domain: the `(u, v)` of
- * their segments' ends, two pairs per segment, as one flat array. */
-export function isoParameters(plain) {
+ * their segments' ends, two pairs per segment, as one flat array; each polyline within
+ * `tolerance` of its iso-curve (isoSpans; the mesh's tolerance, about half a pixel). */
+export function isoParameters(plain, tolerance) {
   const nu = plain.control_points.length;
   const nv = plain.control_points[0].length;
   const us = distinctInDomain(plain.knots_u, plain.degree_u, nu);
   const vs = distinctInDomain(plain.knots_v, plain.degree_v, nv);
+  const rational = Boolean(plain.weights);
+  const rows = plain.control_points;
+  const columns = rows[0].map((_, j) => rows.map((row) => row[j]));
+  // Lines of constant u run along v: their control points combine the rows.
+  const alongV = isoSpans(rows, plain.degree_v, plain.knots_v, tolerance, rational);
+  const alongU = isoSpans(columns, plain.degree_u, plain.knots_u, tolerance, rational);
   const pairs = [];
-  const along = (values, fixedValues, pair) => {
-    const count = Math.max(8, ISO_SAMPLES_PER_SPAN * (values.length - 1));
-    const low = values[0];
-    const high = values[values.length - 1];
+  const lines = (spans, fixedValues, pair) => {
     for (const fixed of fixedValues) {
-      for (let k = 0; k < count; k += 1) {
-        pairs.push(...pair(fixed, low + ((high - low) * k) / count), ...pair(fixed, low + ((high - low) * (k + 1)) / count));
+      for (const { low, high, samples } of spans) {
+        for (let k = 0; k < samples; k += 1) {
+          pairs.push(...pair(fixed, low + ((high - low) * k) / samples), ...pair(fixed, low + ((high - low) * (k + 1)) / samples));
+        }
       }
     }
   };
-  along(vs, us, (u, v) => [u, v]);
-  along(us, vs, (v, u) => [u, v]);
+  lines(alongV, us, (u, v) => [u, v]);
+  lines(alongU, vs, (v, u) => [u, v]);
   return Float64Array.from(pairs);
+}
+
+/**
+ * The knot spans of one direction and the chords each needs so that every iso-line along
+ * that direction stays within `tolerance` of its curve: `[{ low, high, samples }]`.
+ *
+ * `lines[i]` are the net's lines along the direction (degree `p`, full knots `t`). A chord
+ * over a parameter step `h` of a curve with `|C''| <= M` is within `M h² / 8` of it, so a span
+ * of width `h` needs `ceil(h sqrt(M / (8 tolerance)))` chords. Every iso-curve along the
+ * direction has control points `Q_j = Σ_i N_i P_ij` (`N_i >= 0`, summing to one), so its
+ * second derivative's control points are the same combinations of the lines' own,
+ * `D''_ij = (p − 1) (D'_i,j+1 − D'_ij) / (t_{j+p+1} − t_{j+2})` with
+ * `D'_ij = p (P_i,j+1 − P_ij) / (t_{j+p+1} − t_{j+1})`, and on span `s` (`t_s <= x < t_{s+1}`)
+ * `M = max |D''_ij|` over every line and `j = s − p ..= s − 2` bounds it. Rational nets (the
+ * bound does not hold) and a missing tolerance get `ISO_MAX_SAMPLES_PER_SPAN`; so does a span
+ * the bound asks more of.
+ */
+function isoSpans(lines, p, t, tolerance, rational) {
+  const count = lines[0].length;
+  const exact = !rational && tolerance > 0;
+  // The largest |D''| per index j, over every line.
+  const second = new Float64Array(Math.max(count - 2, 0));
+  if (exact && p >= 2) {
+    for (const line of lines) {
+      const first = [];
+      for (let j = 0; j + 1 < count; j += 1) {
+        const width = t[j + p + 1] - t[j + 1];
+        first.push(line[j].map((x, c) => (width > 0 ? (p * (line[j + 1][c] - x)) / width : 0)));
+      }
+      for (let j = 0; j + 2 < count; j += 1) {
+        const width = t[j + p + 1] - t[j + 2];
+        if (!(width > 0)) continue;
+        const size = Math.hypot(...first[j].map((x, c) => ((p - 1) * (first[j + 1][c] - x)) / width));
+        if (size > second[j]) second[j] = size;
+      }
+    }
+  }
+  const spans = [];
+  for (let s = p; s < count; s += 1) {
+    const [low, high] = [t[s], t[s + 1]];
+    if (!(high > low)) continue;
+    let samples = ISO_MAX_SAMPLES_PER_SPAN;
+    if (exact) {
+      let bound = 0;
+      for (let j = Math.max(s - p, 0); j <= s - 2 && j < second.length; j += 1) bound = Math.max(bound, second[j]);
+      samples = Math.min(ISO_MAX_SAMPLES_PER_SPAN, Math.max(1, Math.ceil((high - low) * Math.sqrt(bound / (8 * tolerance)))));
+    }
+    spans.push({ low, high, samples });
+  }
+  return spans;
 }
 
 /** Writes the points of `evaluate` at the `(u, v)` pairs of `parameters` that lie inside
@@ -139,7 +195,7 @@ export function buildGroup(item, { selected, showNet, showIso }) {
     body.name = "body";
     group.add(body);
     if (item.plain) {
-      const parameters = isoParameters(item.plain);
+      const parameters = isoParameters(item.plain, item.tolerance);
       const positions = new Float32Array((parameters.length / 2) * 3);
       evaluateInto(positions, parameters, surfaceEvaluator(item.plain), item.origin, null);
       const isoGeometry = new THREE.BufferGeometry();
