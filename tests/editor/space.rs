@@ -303,6 +303,97 @@ async fn the_3d_view_orbits_pans_zooms_and_switches_views_without_changing_the_m
     browser.close().await;
 }
 
+/// The iso-lines drawn on a surface stay within the mesh's tolerance of the surface's own
+/// iso-curves, with far fewer chords than a fixed count per span: every chord's interior,
+/// evaluated by the service at seven parameters, lies within the tolerance of the chord
+/// (objects.js `isoSpans` takes the chords per span from a bound on the second derivative).
+#[tokio::test]
+async fn the_iso_lines_stay_within_the_mesh_tolerance_with_few_chords() {
+    let app = spawn_app().await;
+    let browser = Browser::start().await;
+    let page = Page::open(&browser.client, &app.address).await;
+    // Strong waves and uneven knots: some spans need several chords, some one.
+    let n = 12;
+    let poles: Vec<Vec<[f64; 3]>> = (0..n)
+        .map(|i| {
+            (0..n)
+                .map(|j| {
+                    let (x, y) = (i as f64, j as f64);
+                    [x, y, 2.5 * (x / 1.3).sin() * (y / 2.0).cos() + 0.1 * x]
+                })
+                .collect()
+        })
+        .collect();
+    let mut knots = vec![0.0; 4];
+    knots.extend((1..n - 3).map(|k| (k as f64 / (n - 3) as f64).powf(1.4)));
+    knots.extend([1.0; 4]);
+    let surface = json!({"degree_u": 3, "degree_v": 3, "control_points": poles, "knots_u": knots, "knots_v": knots});
+    paste_object(&page, "surface", &surface).await;
+    space_settled(&page).await;
+    let iso = page
+        .run("return window.knotshapeSpace.isoLines();", vec![])
+        .await;
+    let ends = floats(&iso["parameters"]);
+    let tolerance = iso["tolerance"].as_f64().unwrap();
+    assert!(tolerance > 0.0, "{iso}");
+    let chords = ends.len() / 4;
+    // Lines at the 10 distinct knots of each direction, 9 spans each: 12 chords per span
+    // would be 2 × 10 × 9 × 12.
+    let fixed = 2 * 10 * 9 * 12;
+    assert!(chords < fixed / 2, "{chords} chords against {fixed}");
+    assert!(
+        chords > 2 * 10 * 9,
+        "some span needs more than one chord: {chords}"
+    );
+    const INSIDE: usize = 7;
+    let mut parameters = Vec::new();
+    for chord in ends.chunks(4) {
+        for k in 0..=INSIDE + 1 {
+            let s = k as f64 / (INSIDE + 1) as f64;
+            parameters.push([
+                chord[0] + s * (chord[2] - chord[0]),
+                chord[1] + s * (chord[3] - chord[1]),
+            ]);
+        }
+    }
+    let mut points = Vec::new();
+    for batch in parameters.chunks(900) {
+        let (status, body) = app
+            .post_json(
+                "/v1/surfaces/evaluate",
+                &json!({"surface": surface, "parameters": batch}),
+            )
+            .await;
+        assert_eq!(status, 200, "{body}");
+        points.extend(body["points"].as_array().unwrap().iter().map(floats));
+    }
+    let mut worst = 0.0f64;
+    for chord in points.chunks(INSIDE + 2) {
+        let (a, b) = (&chord[0], &chord[INSIDE + 1]);
+        let ab: Vec<f64> = (0..3).map(|c| b[c] - a[c]).collect();
+        let length2: f64 = ab.iter().map(|x| x * x).sum();
+        for point in &chord[1..=INSIDE] {
+            let ap: Vec<f64> = (0..3).map(|c| point[c] - a[c]).collect();
+            let t = if length2 > 0.0 {
+                (ap.iter().zip(&ab).map(|(x, y)| x * y).sum::<f64>() / length2).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            let gap = (0..3)
+                .map(|c| (ap[c] - t * ab[c]).powi(2))
+                .sum::<f64>()
+                .sqrt();
+            worst = worst.max(gap);
+        }
+    }
+    assert!(
+        worst <= tolerance * (1.0 + 1e-9),
+        "a chord is {worst} from its iso-curve, above the tolerance {tolerance}"
+    );
+    assert_eq!(page.script_errors().await, Vec::<String>::new());
+    browser.close().await;
+}
+
 #[tokio::test]
 async fn a_surface_point_dragged_in_3d_lands_on_its_target_esc_cancels_and_undo_redo() {
     let app = spawn_app().await;

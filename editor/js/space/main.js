@@ -13,6 +13,9 @@ import { boxOf, polesOf } from "./objects.js";
 /** Whether the browser dispatches `pointerrawupdate` (Chromium, in secure contexts). */
 const RAW_UPDATES = typeof window !== "undefined" && "onpointerrawupdate" in window;
 
+/** During a drag the panel (the move's message) is redrawn at most this often. */
+const DRAG_PANEL_INTERVAL_MS = 100;
+
 /** Zoom of one + or − key press. */
 const KEY_ZOOM = 1.25;
 
@@ -30,15 +33,23 @@ export function setupSpace(elements) {
       settleTimer = setTimeout(() => editor.viewSettled(), 150);
     }
   });
+  // The panel is redrawn once per change, but during a drag at most every
+  // `DRAG_PANEL_INTERVAL_MS`: each redraw costs the page a style, layout and paint pass in the
+  // frame that shows the preview, and the preview comes first.
   let scheduled = false;
+  let lastPanel = 0;
+  const redrawPanel = () => {
+    scheduled = false;
+    lastPanel = performance.now();
+    drawSpacePanel(editor, elements, actions);
+    document.body.dataset.spaceBusy = String(editor.busy > 0 || editor.drag !== null);
+  };
   const notify = () => {
     if (scheduled) return;
     scheduled = true;
-    queueMicrotask(() => {
-      scheduled = false;
-      drawSpacePanel(editor, elements, actions);
-      document.body.dataset.spaceBusy = String(editor.busy > 0 || editor.drag !== null);
-    });
+    const wait = editor.drag ? lastPanel + DRAG_PANEL_INTERVAL_MS - performance.now() : 0;
+    if (wait > 0) setTimeout(redrawPanel, wait);
+    else queueMicrotask(redrawPanel);
   };
   const editor = createEditor(view, notify);
 
@@ -242,6 +253,12 @@ export function setupSpace(elements) {
     timings: editor.timings,
     moves: editor.moves,
     renderMs: () => view.lastRenderMs,
+    /** The selected surface's iso-lines: the (u, v) of their chords' ends and the tolerance. */
+    isoLines: () => {
+      const item = editor.selectedItem();
+      const iso = item?.group?.getObjectByName("iso");
+      return iso ? { parameters: Array.from(iso.userData.parameters), tolerance: item.tolerance } : null;
+    },
     /** Draws now (a test reads the canvas in the same task: the drawing buffer is not kept). */
     renderNow: () => view.renderNow(),
   };
