@@ -865,8 +865,8 @@ async fn drag_to_redraw_in_3d_on_a_30_by_30_surface_reports_its_timings() {
     std::fs::write(target_dir().join("editor-3d-drag-timings.txt"), &report).unwrap();
     // The page's own part (evaluating the solution at the mesh's parameters and issuing the
     // WebGL draw) is within a frame. The whole loop is not, in headless Chromium without a
-    // GPU: each WebGL frame costs the page's main thread 12–20 ms (software compositing
-    // copies the frame back; the DevTools counters above), which delays the next answer
+    // GPU: each WebGL frame is copied back on the page's main thread (software compositing,
+    // about 7 ms a frame in a trace), which delays the next event and answer
     // (docs/performance.md, "The editor in 3D"). The test reports it; it asserts what holds.
     assert!(p95_draw <= FRAME_MS, "{report}");
     assert!(rows.len() * 4 >= moves.len(), "{report}");
