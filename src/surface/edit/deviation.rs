@@ -32,6 +32,23 @@
 //! that runs out of its budget ([`MAX_CELLS`] halvings) answers the largest bound left, still
 //! an upper bound. Gaps below `1e-13` of the nets' size are rounding and not refined.
 //!
+//! **Knot edits of a polynomial surface** (the same poles, other knots: the knot method's
+//! solutions) take a shorter way ([`knot_edit_cells`]). Each cell's Bézier conversion is a
+//! linear map of the `p + 1` poles of its span, the same for every pole column: the matrix
+//! `E_c` (Bézier point `r` = `Σ_i E_c[r][i] P_{a-p+i}`) is made once per `u` cell and surface,
+//! `F_k` once per `v` cell. A cell whose `v` knots around its span are unchanged sees only the
+//! `u` knots move: there `S_old − S_new = Σ_j N_j(v) G_j(u)` with `G_j = C_j,old − C_j,new` the
+//! gap of pole column `j`'s curve along `u` (the same `N_j(v) >= 0`, summing to one, in both
+//! surfaces), whose Bézier points over `u` cell `c` are `g_j = E_c,old P_j − E_c,new P_j`; so
+//! `|S_old − S_new|² <= max_{j, r} |g_jr|²` over the cell's `q + 1` columns bounds the cell
+//! before its net is made, and the net is those columns' gaps converted along `v`. Rows
+//! likewise where only the `v` knots moved. Where both moved, the gap passes through the
+//! surface with the new `u` and the old `v` knots — a `u` move, then a `v` move — and is at most
+//! the sum of the two bounds (that cell's net is made from both surfaces' nets). The cells
+//! are visited by their bound, largest first; once a bound is within the tolerance of the
+//! largest value found, the rest are skipped: their maxima cannot raise the answer by more
+//! than the tolerance, so what is certified is unchanged.
+//!
 //! The earlier form squared the gap (`N = |G|²`, `D = W²`, degrees `(4p, 4q)` for rational
 //! cells) and tested the coefficients of `N − M D`; the hull bound needs neither the squares
 //! nor the quadrupled degree (docs/performance.md has the measured difference).
@@ -456,10 +473,31 @@ pub fn surface_max_deviation(old: &Surface, new: &Surface, rect: [(f64, f64); 2]
     let us = cuts(old.u().knots(), new.u().knots(), ranges[0]);
     let vs = cuts(old.v().knots(), new.v().knots(), ranges[1]);
     let rational = old.is_rational() || new.is_rational();
+    let floor = (ZERO_GAP * surface_edit_size(old).max(surface_edit_size(new))).powi(2);
+    let knots_only = !rational
+        && (old.u().count(), old.v().count()) == (new.u().count(), new.v().count())
+        && old.homogeneous() == new.homogeneous();
+    let (queue, best) = if knots_only {
+        knot_edit_cells(old, new, (&us, &vs), floor)
+    } else {
+        changed_cells(old, new, (&us, &vs))
+    };
+    certify(queue, best, floor)
+}
+
+/// Every cell where the two surfaces differ, with its gap (module docs), and the largest
+/// corner value.
+fn changed_cells(
+    old: &Surface,
+    new: &Surface,
+    (us, vs): (&[f64], &[f64]),
+) -> (BinaryHeap<Cell>, f64) {
+    let (p, q) = (old.u().degree(), old.v().degree());
+    let rational = old.is_rational() || new.is_rational();
     let len = (p + 1) * (q + 1);
     let (mut net_old, mut net_new) = (vec![[0.0; 4]; len], vec![[0.0; 4]; len]);
     let mut work = vec![[0.0; 4]; 2 * (p + 1)];
-    let (mut rows_old, mut rows_new) = (RowBlossoms::new(old, &vs), RowBlossoms::new(new, &vs));
+    let (mut rows_old, mut rows_new) = (RowBlossoms::new(old, vs), RowBlossoms::new(new, vs));
     let mut queue = BinaryHeap::new();
     let mut best = 0.0f64;
     for u in us.windows(2) {
@@ -485,7 +523,259 @@ pub fn surface_max_deviation(old: &Surface, new: &Surface, rect: [(f64, f64); 2]
             queue.push(Cell::new(patch, 0));
         }
     }
-    let floor = (ZERO_GAP * surface_edit_size(old).max(surface_edit_size(new))).powi(2);
+    (queue, best)
+}
+
+/// The `(degree + 1)²` matrix of the Bézier conversion of `[x0, x1]` inside span `span` of the
+/// full knots `knots`: entry `(r, i)` (row-major) weighs pole `span - degree + i` in Bézier point
+/// `r`. Made by [`bezier_of_net`] on unit poles, four at a time in its four lanes (blossoming
+/// is affine, so each lane carries one column).
+fn conversion_matrix(degree: usize, knots: &[f64], span: usize, (x0, x1): (f64, f64)) -> Vec<f64> {
+    let n = degree + 1;
+    let mut matrix = vec![0.0; n * n];
+    let (mut unit, mut out) = (vec![[0.0; 4]; n], vec![[0.0; 4]; n]);
+    for first in (0..n).step_by(4) {
+        for (i, point) in unit.iter_mut().enumerate() {
+            *point = std::array::from_fn(|lane| if i == first + lane { 1.0 } else { 0.0 });
+        }
+        bezier_of_net(degree, knots, span, &unit, x0, x1, &mut out);
+        for (r, point) in out.iter().enumerate() {
+            for (lane, &value) in point.iter().enumerate().take(n - first) {
+                matrix[r * n + first + lane] = value;
+            }
+        }
+    }
+    matrix
+}
+
+/// One direction of a knot edit's cells: the spans of both surfaces over each cell, whether
+/// the `2 degree` knots around it moved, and each cell's conversion matrices (the new
+/// surface's only where they moved).
+struct KnotAxis {
+    spans: Vec<(usize, usize)>,
+    moved: Vec<bool>,
+    old: Vec<Vec<f64>>,
+    new: Vec<Vec<f64>>,
+}
+
+impl KnotAxis {
+    fn new(
+        cuts: &[f64],
+        degree: usize,
+        (old, new): (&[f64], &[f64]),
+        span: impl Fn(f64) -> (usize, usize),
+    ) -> KnotAxis {
+        let p = degree;
+        let mut axis = KnotAxis {
+            spans: Vec::new(),
+            moved: Vec::new(),
+            old: Vec::new(),
+            new: Vec::new(),
+        };
+        for cell in cuts.windows(2) {
+            let (a, a2) = span(0.5 * (cell[0] + cell[1]));
+            let moved = a != a2 || old[a + 1 - p..=a + p] != new[a2 + 1 - p..=a2 + p];
+            axis.old
+                .push(conversion_matrix(p, old, a, (cell[0], cell[1])));
+            axis.new.push(if moved {
+                conversion_matrix(p, new, a2, (cell[0], cell[1]))
+            } else {
+                Vec::new()
+            });
+            axis.spans.push((a, a2));
+            axis.moved.push(moved);
+        }
+        axis
+    }
+}
+
+/// `out[r] = Σ_i matrix[r][i] · points[i]` (`n = points.len()`), three coordinates.
+fn convert(matrix: &[f64], points: &[[f64; 3]], out: &mut [[f64; 3]]) {
+    let n = points.len();
+    for (r, value) in out.iter_mut().enumerate().take(n) {
+        let weights = &matrix[r * n..(r + 1) * n];
+        let mut sum = [0.0; 3];
+        for (&weight, x) in weights.iter().zip(points) {
+            sum[0] += weight * x[0];
+            sum[1] += weight * x[1];
+            sum[2] += weight * x[2];
+        }
+        *value = sum;
+    }
+}
+
+fn squared(x: &[f64; 3]) -> f64 {
+    x[0] * x[0] + x[1] * x[1] + x[2] * x[2]
+}
+
+/// The cells of a knot edit of a polynomial surface (module docs, "Knot edits"): every cell
+/// where knots moved, by its bound, largest first; the gap nets of those that can still raise
+/// the answer, and the largest corner value.
+fn knot_edit_cells(
+    old: &Surface,
+    new: &Surface,
+    (us, vs): (&[f64], &[f64]),
+    floor: f64,
+) -> (BinaryHeap<Cell>, f64) {
+    let (p, q) = (old.u().degree(), old.v().degree());
+    let (rows, columns) = (old.u().count(), old.v().count());
+    let poles: Vec<[f64; 3]> = old
+        .homogeneous()
+        .iter()
+        .map(|h| [h[0], h[1], h[2]])
+        .collect();
+    let u = KnotAxis::new(us, p, (old.u().knots(), new.u().knots()), |x| {
+        (old.u().span(x), new.u().span(x))
+    });
+    let v = KnotAxis::new(vs, q, (old.v().knots(), new.v().knots()), |x| {
+        (old.v().span(x), new.v().span(x))
+    });
+    let mut points = vec![[0.0; 3]; p.max(q) + 1];
+    // Each pole column converted along u over each moved u cell by both surfaces
+    // (`(p + 1)` points per column), their gap, and its largest squared point.
+    let cells_u = us.len() - 1;
+    let (mut column_old, mut column_new) = (vec![Vec::new(); cells_u], vec![Vec::new(); cells_u]);
+    let mut column_gaps = vec![Vec::new(); cells_u];
+    let mut column_largest = vec![Vec::new(); cells_u];
+    for c in (0..cells_u).filter(|&c| u.moved[c]) {
+        let (a, a2) = u.spans[c];
+        let mut converted_along_u = |matrix: &[f64], span: usize| -> Vec<[f64; 3]> {
+            let mut out = vec![[0.0; 3]; columns * (p + 1)];
+            for (j, column) in out.chunks_mut(p + 1).enumerate() {
+                for (m, point) in points.iter_mut().enumerate().take(p + 1) {
+                    *point = poles[(span - p + m) * columns + j];
+                }
+                convert(matrix, &points[..p + 1], column);
+            }
+            out
+        };
+        let converted_old = converted_along_u(&u.old[c], a);
+        let converted_new = converted_along_u(&u.new[c], a2);
+        let gaps: Vec<[f64; 3]> = converted_old
+            .iter()
+            .zip(&converted_new)
+            .map(|(o, n)| [o[0] - n[0], o[1] - n[1], o[2] - n[2]])
+            .collect();
+        column_largest[c] = gaps
+            .chunks(p + 1)
+            .map(|gap| gap.iter().map(squared).fold(0.0f64, f64::max))
+            .collect();
+        column_gaps[c] = gaps;
+        column_old[c] = converted_old;
+        column_new[c] = converted_new;
+    }
+    // Each pole row's gap along v over each moved v cell, and its largest squared point.
+    let cells_v = vs.len() - 1;
+    let mut row_gaps = vec![Vec::new(); cells_v];
+    let mut row_largest = vec![Vec::new(); cells_v];
+    let mut scratch = vec![[0.0; 3]; q + 1];
+    for k in (0..cells_v).filter(|&k| v.moved[k]) {
+        let (b, b2) = v.spans[k];
+        let mut gaps = vec![[0.0; 3]; rows * (q + 1)];
+        for i in 0..rows {
+            let gap = &mut gaps[i * (q + 1)..(i + 1) * (q + 1)];
+            convert(
+                &v.old[k],
+                &poles[i * columns + b - q..=i * columns + b],
+                gap,
+            );
+            convert(
+                &v.new[k],
+                &poles[i * columns + b2 - q..=i * columns + b2],
+                &mut scratch,
+            );
+            for (g, n) in gap.iter_mut().zip(&scratch) {
+                *g = [g[0] - n[0], g[1] - n[1], g[2] - n[2]];
+            }
+        }
+        row_largest[k] = gaps
+            .chunks(q + 1)
+            .map(|gap| gap.iter().map(squared).fold(0.0f64, f64::max))
+            .collect();
+        row_gaps[k] = gaps;
+    }
+    // Every moved cell's bound: through the surface with the new u and the old v knots.
+    let mut bounded = Vec::new();
+    let largest = |values: &[f64]| values.iter().fold(0.0f64, |m, &x| m.max(x));
+    for (c, columns_largest) in column_largest.iter().enumerate() {
+        for (k, rows_largest) in row_largest.iter().enumerate() {
+            if !(u.moved[c] || v.moved[k]) {
+                continue;
+            }
+            let (b, a2) = (v.spans[k].0, u.spans[c].1);
+            let along_u = if u.moved[c] {
+                largest(&columns_largest[b - q..=b])
+            } else {
+                0.0
+            };
+            let along_v = if v.moved[k] {
+                largest(&rows_largest[a2 - p..=a2])
+            } else {
+                0.0
+            };
+            bounded.push(((along_u.sqrt() + along_v.sqrt()).powi(2), c, k));
+        }
+    }
+    bounded.sort_by(|x, y| y.0.total_cmp(&x.0));
+    let mut queue = BinaryHeap::new();
+    let mut best = 0.0f64;
+    let mut converted = vec![[0.0; 3]; p.max(q) + 1];
+    let mut other = vec![[0.0; 3]; p.max(q) + 1];
+    for (bound, c, k) in bounded {
+        if bound <= (best * (1.0 + SURFACE_DEVIATION_RELATIVE_TOLERANCE)).max(floor) {
+            // Sorted: every cell left is bounded as low.
+            break;
+        }
+        let ((a, _), (b, b2)) = (u.spans[c], v.spans[k]);
+        let mut net = vec![[0.0, 0.0, 0.0, 1.0]; (p + 1) * (q + 1)];
+        if u.moved[c] {
+            // The columns converted along u, then along v: their gaps where the v knots
+            // agree, each surface's own where they moved too.
+            for r in 0..=p {
+                let column = |from: &[[f64; 3]], b: usize, points: &mut [[f64; 3]]| {
+                    for (l, point) in points.iter_mut().enumerate().take(q + 1) {
+                        *point = from[(b - q + l) * (p + 1) + r];
+                    }
+                };
+                if v.moved[k] {
+                    column(&column_old[c], b, &mut points);
+                    convert(&v.old[k], &points[..q + 1], &mut converted);
+                    column(&column_new[c], b2, &mut points);
+                    convert(&v.new[k], &points[..q + 1], &mut other);
+                    for (x, y) in converted.iter_mut().zip(&other) {
+                        *x = [x[0] - y[0], x[1] - y[1], x[2] - y[2]];
+                    }
+                } else {
+                    column(&column_gaps[c], b, &mut points);
+                    convert(&v.old[k], &points[..q + 1], &mut converted);
+                }
+                for s in 0..=q {
+                    let g = converted[s];
+                    net[r * (q + 1) + s] = [g[0], g[1], g[2], 1.0];
+                }
+            }
+        } else {
+            // The rows' gaps converted along u.
+            for s in 0..=q {
+                for (m, point) in points.iter_mut().enumerate().take(p + 1) {
+                    *point = row_gaps[k][(a - p + m) * (q + 1) + s];
+                }
+                convert(&u.old[c], &points[..p + 1], &mut converted);
+                for r in 0..=p {
+                    let g = converted[r];
+                    net[r * (q + 1) + s] = [g[0], g[1], g[2], 1.0];
+                }
+            }
+        }
+        let patch = GapPatch { m: p, n: q, c: net };
+        best = best.max(patch.corner_value());
+        queue.push(Cell::new(patch, 0));
+    }
+    (queue, best)
+}
+
+/// The branch and bound over the cells in `queue` (module docs): `sqrt(M)`.
+fn certify(mut queue: BinaryHeap<Cell>, mut best: f64, floor: f64) -> f64 {
     let mut halvings = 0;
     while let Some(cell) = queue.pop() {
         let bound = best * (1.0 + SURFACE_DEVIATION_RELATIVE_TOLERANCE);
@@ -702,7 +992,8 @@ mod tests {
             moved in prop::collection::vec(-0.5f64..0.5, 3),
             knot in 0.32f64..0.53,
             rational in any::<bool>(),
-            kind in 0usize..3,
+            kind in 0usize..5,
+            v_knot in 0.32f64..0.53,
         ) {
             let weights: Vec<Vec<f64>> =
                 (0..6).map(|i| (0..6).map(|j| weights[i * 6 + j]).collect()).collect();
@@ -726,10 +1017,22 @@ mod tests {
                     ];
                     bicubic(&moved_poles, (&KNOTS, &KNOTS), old_weights)
                 }
-                _ => {
+                // Knots only: in u, in v, in both (a knot edit's cells by their bound).
+                2 => {
                     let mut knots = KNOTS;
                     knots[4] = knot;
                     bicubic(&poles, (&knots, &KNOTS), old_weights)
+                }
+                3 => {
+                    let mut knots = KNOTS;
+                    knots[5] = 0.55 + (v_knot - 0.32) * 1.5;
+                    bicubic(&poles, (&KNOTS, &knots), old_weights)
+                }
+                _ => {
+                    let (mut u_knots, mut v_knots) = (KNOTS, KNOTS);
+                    u_knots[4] = knot;
+                    v_knots[4] = v_knot;
+                    bicubic(&poles, (&u_knots, &v_knots), old_weights)
                 }
             };
             let bound = surface_max_deviation(&old, &new, old.domain());
