@@ -53,6 +53,11 @@
 //! cells) and tested the coefficients of `N − M D`; the hull bound needs neither the squares
 //! nor the quadrupled degree (docs/performance.md has the measured difference).
 
+//!
+//! One file (about 700 lines of code, then its tests) over 600 on purpose: the general cells,
+//! the knot edits' cells and the branch and bound share the gap patch and its bounds and
+//! certify one answer together; the knot edits' part (`knot_edit_cells` and its matrices) is
+//! the piece to move out first if it grows.
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 
