@@ -554,43 +554,58 @@ fn conversion_matrix(degree: usize, knots: &[f64], span: usize, (x0, x1): (f64, 
 }
 
 /// One direction of a knot edit's cells: the spans of both surfaces over each cell, whether
-/// the `2 degree` knots around it moved, and each cell's conversion matrices (the new
-/// surface's only where they moved).
-struct KnotAxis {
+/// the `2 degree` knots around it moved, and each cell's conversion matrices: the new
+/// surface's where they moved, the old surface's there and, on demand
+/// ([`KnotAxis::old_matrix`]), wherever a visited cell needs them.
+struct KnotAxis<'a> {
+    cuts: &'a [f64],
+    degree: usize,
+    old_knots: &'a [f64],
     spans: Vec<(usize, usize)>,
     moved: Vec<bool>,
+    /// Empty until made.
     old: Vec<Vec<f64>>,
     new: Vec<Vec<f64>>,
 }
 
-impl KnotAxis {
+impl<'a> KnotAxis<'a> {
     fn new(
-        cuts: &[f64],
+        cuts: &'a [f64],
         degree: usize,
-        (old, new): (&[f64], &[f64]),
+        (old, new): (&'a [f64], &[f64]),
         span: impl Fn(f64) -> (usize, usize),
-    ) -> KnotAxis {
+    ) -> KnotAxis<'a> {
         let p = degree;
+        let cells = cuts.len() - 1;
         let mut axis = KnotAxis {
-            spans: Vec::new(),
-            moved: Vec::new(),
-            old: Vec::new(),
-            new: Vec::new(),
+            cuts,
+            degree,
+            old_knots: old,
+            spans: Vec::with_capacity(cells),
+            moved: Vec::with_capacity(cells),
+            old: vec![Vec::new(); cells],
+            new: vec![Vec::new(); cells],
         };
-        for cell in cuts.windows(2) {
+        for (c, cell) in cuts.windows(2).enumerate() {
             let (a, a2) = span(0.5 * (cell[0] + cell[1]));
             let moved = a != a2 || old[a + 1 - p..=a + p] != new[a2 + 1 - p..=a2 + p];
-            axis.old
-                .push(conversion_matrix(p, old, a, (cell[0], cell[1])));
-            axis.new.push(if moved {
-                conversion_matrix(p, new, a2, (cell[0], cell[1]))
-            } else {
-                Vec::new()
-            });
             axis.spans.push((a, a2));
             axis.moved.push(moved);
+            if moved {
+                axis.new[c] = conversion_matrix(p, new, a2, (cell[0], cell[1]));
+                axis.old_matrix(c);
+            }
         }
         axis
+    }
+
+    /// The old surface's conversion matrix of cell `c`, made on first use.
+    fn old_matrix(&mut self, c: usize) -> &[f64] {
+        if self.old[c].is_empty() {
+            let range = (self.cuts[c], self.cuts[c + 1]);
+            self.old[c] = conversion_matrix(self.degree, self.old_knots, self.spans[c].0, range);
+        }
+        &self.old[c]
     }
 }
 
@@ -609,8 +624,37 @@ fn convert(matrix: &[f64], points: &[[f64; 3]], out: &mut [[f64; 3]]) {
     }
 }
 
-fn squared(x: &[f64; 3]) -> f64 {
+/// [`convert`] of many lines of poles at once: `lines` holds `n` rows of `width` numbers (row
+/// `i` the `i`-th pole of every line, coordinates interleaved), `out` gets `n` such rows,
+/// `out[r][x] = Σ_i matrix[r][i] · lines[i][x]`. The rows are contiguous, so the inner loop
+/// runs over whole rows of numbers (and vectorizes), where converting line by line did not.
+fn convert_lines(matrix: &[f64], lines: &[f64], width: usize, out: &mut [f64]) {
+    let n = out.len() / width;
+    for (r, out_row) in out.chunks_exact_mut(width).enumerate() {
+        out_row.fill(0.0);
+        for (i, line) in lines.chunks_exact(width).take(n).enumerate() {
+            let weight = matrix[r * n + i];
+            for (o, &x) in out_row.iter_mut().zip(line) {
+                *o += weight * x;
+            }
+        }
+    }
+}
+
+fn squared(x: &[f64]) -> f64 {
     x[0] * x[0] + x[1] * x[1] + x[2] * x[2]
+}
+
+/// The largest `|g|²` of each line in a block of converted gaps (`degree + 1` rows of `lines`
+/// points each, [`convert_lines`]'s layout): `largest[l] = max_r |gaps[r][l]|²`.
+fn largest_per_line(gaps: &[f64], lines: usize) -> Vec<f64> {
+    let mut largest = vec![0.0f64; lines];
+    for row in gaps.chunks_exact(3 * lines) {
+        for (l, point) in row.chunks_exact(3).enumerate() {
+            largest[l] = largest[l].max(squared(point));
+        }
+    }
+    largest
 }
 
 /// The cells of a knot edit of a polynomial surface (module docs, "Knot edits"): every cell
@@ -624,79 +668,74 @@ fn knot_edit_cells(
 ) -> (BinaryHeap<Cell>, f64) {
     let (p, q) = (old.u().degree(), old.v().degree());
     let (rows, columns) = (old.u().count(), old.v().count());
-    let poles: Vec<[f64; 3]> = old
-        .homogeneous()
-        .iter()
-        .map(|h| [h[0], h[1], h[2]])
-        .collect();
-    let u = KnotAxis::new(us, p, (old.u().knots(), new.u().knots()), |x| {
+    // The poles row by row along u (`by_rows[i][j]`, for converting columns along u) and
+    // column by column along v (`by_columns[j][i]`, for converting rows along v).
+    let homogeneous = old.homogeneous();
+    let (mut by_rows, mut by_columns) =
+        (vec![0.0; 3 * rows * columns], vec![0.0; 3 * rows * columns]);
+    for (flat, h) in homogeneous.iter().enumerate() {
+        let (i, j) = (flat / columns, flat % columns);
+        by_rows[3 * flat..3 * flat + 3].copy_from_slice(&h[..3]);
+        by_columns[3 * (j * rows + i)..3 * (j * rows + i) + 3].copy_from_slice(&h[..3]);
+    }
+    let mut u = KnotAxis::new(us, p, (old.u().knots(), new.u().knots()), |x| {
         (old.u().span(x), new.u().span(x))
     });
-    let v = KnotAxis::new(vs, q, (old.v().knots(), new.v().knots()), |x| {
+    let mut v = KnotAxis::new(vs, q, (old.v().knots(), new.v().knots()), |x| {
         (old.v().span(x), new.v().span(x))
     });
-    let mut points = vec![[0.0; 3]; p.max(q) + 1];
-    // Each pole column converted along u over each moved u cell by both surfaces
-    // (`(p + 1)` points per column), their gap, and its largest squared point.
+    // Every pole column converted along u over each moved u cell by both surfaces, as
+    // `p + 1` rows of `columns` points (`[r][j]`), their gap and each column's largest
+    // squared gap point.
+    let (width_u, width_v) = (3 * columns, 3 * rows);
     let cells_u = us.len() - 1;
     let (mut column_old, mut column_new) = (vec![Vec::new(); cells_u], vec![Vec::new(); cells_u]);
     let mut column_gaps = vec![Vec::new(); cells_u];
     let mut column_largest = vec![Vec::new(); cells_u];
     for c in (0..cells_u).filter(|&c| u.moved[c]) {
         let (a, a2) = u.spans[c];
-        let mut converted_along_u = |matrix: &[f64], span: usize| -> Vec<[f64; 3]> {
-            let mut out = vec![[0.0; 3]; columns * (p + 1)];
-            for (j, column) in out.chunks_mut(p + 1).enumerate() {
-                for (m, point) in points.iter_mut().enumerate().take(p + 1) {
-                    *point = poles[(span - p + m) * columns + j];
-                }
-                convert(matrix, &points[..p + 1], column);
-            }
+        let converted_along_u = |matrix: &[f64], span: usize| -> Vec<f64> {
+            let mut out = vec![0.0; (p + 1) * width_u];
+            convert_lines(matrix, &by_rows[(span - p) * width_u..], width_u, &mut out);
             out
         };
         let converted_old = converted_along_u(&u.old[c], a);
         let converted_new = converted_along_u(&u.new[c], a2);
-        let gaps: Vec<[f64; 3]> = converted_old
+        let gaps: Vec<f64> = converted_old
             .iter()
             .zip(&converted_new)
-            .map(|(o, n)| [o[0] - n[0], o[1] - n[1], o[2] - n[2]])
+            .map(|(o, n)| o - n)
             .collect();
-        column_largest[c] = gaps
-            .chunks(p + 1)
-            .map(|gap| gap.iter().map(squared).fold(0.0f64, f64::max))
-            .collect();
+        column_largest[c] = largest_per_line(&gaps, columns);
         column_gaps[c] = gaps;
         column_old[c] = converted_old;
         column_new[c] = converted_new;
     }
-    // Each pole row's gap along v over each moved v cell, and its largest squared point.
+    // Every pole row's gap along v over each moved v cell (`q + 1` rows of `rows` points,
+    // `[s][i]`), and each row's largest squared gap point.
     let cells_v = vs.len() - 1;
     let mut row_gaps = vec![Vec::new(); cells_v];
     let mut row_largest = vec![Vec::new(); cells_v];
-    let mut scratch = vec![[0.0; 3]; q + 1];
+    let mut scratch = vec![0.0; (q + 1) * width_v];
     for k in (0..cells_v).filter(|&k| v.moved[k]) {
         let (b, b2) = v.spans[k];
-        let mut gaps = vec![[0.0; 3]; rows * (q + 1)];
-        for i in 0..rows {
-            let gap = &mut gaps[i * (q + 1)..(i + 1) * (q + 1)];
-            convert(
-                &v.old[k],
-                &poles[i * columns + b - q..=i * columns + b],
-                gap,
-            );
-            convert(
-                &v.new[k],
-                &poles[i * columns + b2 - q..=i * columns + b2],
-                &mut scratch,
-            );
-            for (g, n) in gap.iter_mut().zip(&scratch) {
-                *g = [g[0] - n[0], g[1] - n[1], g[2] - n[2]];
-            }
+        let mut gaps = vec![0.0; (q + 1) * width_v];
+        convert_lines(
+            &v.old[k],
+            &by_columns[(b - q) * width_v..],
+            width_v,
+            &mut gaps,
+        );
+        convert_lines(
+            &v.new[k],
+            &by_columns[(b2 - q) * width_v..],
+            width_v,
+            &mut scratch,
+        );
+        for (g, n) in gaps.iter_mut().zip(&scratch) {
+            *g -= n;
         }
-        row_largest[k] = gaps
-            .chunks(q + 1)
-            .map(|gap| gap.iter().map(squared).fold(0.0f64, f64::max))
-            .collect();
+        row_largest[k] = largest_per_line(&gaps, rows);
         row_gaps[k] = gaps;
     }
     // Every moved cell's bound: through the surface with the new u and the old v knots.
@@ -718,15 +757,20 @@ fn knot_edit_cells(
             } else {
                 0.0
             };
-            bounded.push(((along_u.sqrt() + along_v.sqrt()).powi(2), c, k));
+            // A bound is not negative, so its bits order as its value does.
+            bounded.push(((along_u.sqrt() + along_v.sqrt()).powi(2).to_bits(), c, k));
         }
     }
-    bounded.sort_by(|x, y| y.0.total_cmp(&x.0));
+    // Largest first; heapified at once, popped only as far as the search goes.
+    let mut bounded = BinaryHeap::from(bounded);
     let mut queue = BinaryHeap::new();
     let mut best = 0.0f64;
+    let mut points = vec![[0.0; 3]; p.max(q) + 1];
     let mut converted = vec![[0.0; 3]; p.max(q) + 1];
     let mut other = vec![[0.0; 3]; p.max(q) + 1];
-    for (bound, c, k) in bounded {
+    let point = |from: &[f64], at: usize| -> [f64; 3] { [from[at], from[at + 1], from[at + 2]] };
+    while let Some((bits, c, k)) = bounded.pop() {
+        let bound = f64::from_bits(bits);
         if bound <= (best * (1.0 + SURFACE_DEVIATION_RELATIVE_TOLERANCE)).max(floor) {
             // Sorted: every cell left is bounded as low.
             break;
@@ -737,14 +781,14 @@ fn knot_edit_cells(
             // The columns converted along u, then along v: their gaps where the v knots
             // agree, each surface's own where they moved too.
             for r in 0..=p {
-                let column = |from: &[[f64; 3]], b: usize, points: &mut [[f64; 3]]| {
-                    for (l, point) in points.iter_mut().enumerate().take(q + 1) {
-                        *point = from[(b - q + l) * (p + 1) + r];
+                let column = |from: &[f64], b: usize, points: &mut [[f64; 3]]| {
+                    for (l, value) in points.iter_mut().enumerate().take(q + 1) {
+                        *value = point(from, r * width_u + 3 * (b - q + l));
                     }
                 };
                 if v.moved[k] {
                     column(&column_old[c], b, &mut points);
-                    convert(&v.old[k], &points[..q + 1], &mut converted);
+                    convert(v.old_matrix(k), &points[..q + 1], &mut converted);
                     column(&column_new[c], b2, &mut points);
                     convert(&v.new[k], &points[..q + 1], &mut other);
                     for (x, y) in converted.iter_mut().zip(&other) {
@@ -752,7 +796,7 @@ fn knot_edit_cells(
                     }
                 } else {
                     column(&column_gaps[c], b, &mut points);
-                    convert(&v.old[k], &points[..q + 1], &mut converted);
+                    convert(v.old_matrix(k), &points[..q + 1], &mut converted);
                 }
                 for s in 0..=q {
                     let g = converted[s];
@@ -762,10 +806,10 @@ fn knot_edit_cells(
         } else {
             // The rows' gaps converted along u.
             for s in 0..=q {
-                for (m, point) in points.iter_mut().enumerate().take(p + 1) {
-                    *point = row_gaps[k][(a - p + m) * (q + 1) + s];
+                for (m, value) in points.iter_mut().enumerate().take(p + 1) {
+                    *value = point(&row_gaps[k], s * width_v + 3 * (a - p + m));
                 }
-                convert(&u.old[c], &points[..p + 1], &mut converted);
+                convert(u.old_matrix(c), &points[..p + 1], &mut converted);
                 for r in 0..=p {
                     let g = converted[r];
                     net[r * (q + 1) + s] = [g[0], g[1], g[2], 1.0];

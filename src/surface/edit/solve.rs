@@ -1,13 +1,13 @@
 //! One edit of the picked surface point (docs/method.md §44): runs the requested methods
-//! ([`super::method`]), checks every solution against the constraints, measures and ranks all
-//! methods' solutions together by the certified `max_deviation` (ties: better conditioned
-//! first), says per method what was excluded and why, and finds the nearest reachable point
-//! when nothing reaches the target.
+//! ([`super::method`]; side by side on the rayon pool when allowed), checks every solution
+//! against the constraints, measures and ranks all methods' solutions together by the
+//! certified `max_deviation` (ties: better conditioned first), says per method what was
+//! excluded and why, and finds the nearest reachable point when nothing reaches the target.
 
 use super::constraints::{FixedNet, SurfaceConstraints};
 use super::method::{
-    SurfaceEditContext, SurfaceExclusion, SurfaceExclusionReason, SurfaceMethodKind,
-    SurfaceReachable, SurfaceSolution,
+    SurfaceEditContext, SurfaceEditMethod, SurfaceExclusion, SurfaceExclusionReason,
+    SurfaceMethodKind, SurfaceReachable, SurfaceSolution,
 };
 use crate::spline::vector::{Point, distance};
 use crate::surface::Surface;
@@ -114,10 +114,25 @@ pub fn surface_edit(request: &SurfaceEditRequest) -> SurfaceEditOutcome {
             nearest: None,
         };
     }
-    let mut solutions = Vec::new();
-    for method in &methods {
+    // Each method solves, checks and measures its own solutions (on the pool when allowed:
+    // one method's deviations are measured while another still solves); their exclusions
+    // are then merged in the order of the methods.
+    let solve_one = |method: &&'static dyn SurfaceEditMethod| {
         let found = method.solve(&context, request.target);
-        for exclusion in found.excluded {
+        let mut broken = Vec::new();
+        let mut solutions = checked(request, found.solutions, &mut broken);
+        measure(request.surface, &mut solutions);
+        (found.excluded, broken, solutions)
+    };
+    let answers: Vec<_> = if methods.len() >= 2 && crate::parallel::allowed() {
+        use rayon::prelude::*;
+        methods.par_iter().map(solve_one).collect()
+    } else {
+        methods.iter().map(solve_one).collect()
+    };
+    let mut solutions = Vec::new();
+    for (found_excluded, broken, found) in answers {
+        for exclusion in found_excluded.into_iter().chain(broken) {
             exclude(
                 &mut excluded,
                 exclusion.method,
@@ -125,7 +140,7 @@ pub fn surface_edit(request: &SurfaceEditRequest) -> SurfaceEditOutcome {
                 exclusion.reason,
             );
         }
-        solutions.extend(checked(request, found.solutions, &mut excluded));
+        solutions.extend(found);
     }
     let mut nearest = None;
     if solutions.is_empty() && request.options.nearest {
@@ -181,14 +196,26 @@ fn checked(
         .collect()
 }
 
-/// Measures each solution's certified deviation from `surface` and sorts by it (ties: the
-/// better conditioned first).
+/// Measures each solution's certified deviation from `surface` (those not measured yet) and
+/// sorts by it (ties: the better conditioned first).
+pub fn ranked(surface: &Surface, mut solutions: Vec<SurfaceSolution>) -> Vec<SurfaceSolution> {
+    measure(surface, &mut solutions);
+    solutions.sort_by(|a, b| {
+        let key = |s: &SurfaceSolution| s.max_deviation.unwrap_or(f64::INFINITY);
+        key(a)
+            .total_cmp(&key(b))
+            .then(b.conditioning.total_cmp(&a.conditioning))
+    });
+    solutions
+}
+
+/// Sets the certified deviation from `surface` of each solution not measured yet.
 ///
 /// Each bound is independent and costly (tens to hundreds of microseconds: a branch and bound
 /// over the changed patches), so two or more are measured on the rayon pool.
-pub fn ranked(surface: &Surface, mut solutions: Vec<SurfaceSolution>) -> Vec<SurfaceSolution> {
+fn measure(surface: &Surface, solutions: &mut [SurfaceSolution]) {
     use rayon::prelude::*;
-    let measure = |solution: &mut SurfaceSolution| {
+    let measure_one = |solution: &mut SurfaceSolution| {
         if solution.max_deviation.is_none() {
             let deviation = match solution.detail.method().method() {
                 Some(method) => method.deviation(surface, solution),
@@ -206,17 +233,10 @@ pub fn ranked(surface: &Surface, mut solutions: Vec<SurfaceSolution>) -> Vec<Sur
         .filter(|s| s.max_deviation.is_none())
         .count();
     if unmeasured >= 2 && crate::parallel::allowed() {
-        solutions.par_iter_mut().for_each(measure);
+        solutions.par_iter_mut().for_each(measure_one);
     } else {
-        solutions.iter_mut().for_each(measure);
+        solutions.iter_mut().for_each(measure_one);
     }
-    solutions.sort_by(|a, b| {
-        let key = |s: &SurfaceSolution| s.max_deviation.unwrap_or(f64::INFINITY);
-        key(a)
-            .total_cmp(&key(b))
-            .then(b.conditioning.total_cmp(&a.conditioning))
-    });
-    solutions
 }
 
 /// What each requested method can reach, for drawing (a method not offered: `Nothing`).

@@ -123,13 +123,15 @@ pub fn weight_triples(
     if active.len() > MAX_ACTIVE_POLES {
         return Err(WeightRefusal::TooManyActivePoles(active.len()));
     }
-    let repeated = |flat: usize| {
-        active
-            .iter()
-            .filter(|(other, _)| caller_index(surface, *other) == caller_index(surface, flat))
-            .count()
-            > 1
-    };
+    // Whether each active pole's caller index is held by another active pole too.
+    let callers: Vec<[usize; 2]> = active
+        .iter()
+        .map(|&(flat, _)| caller_index(surface, flat))
+        .collect();
+    let repeated: Vec<bool> = callers
+        .iter()
+        .map(|caller| callers.iter().filter(|other| *other == caller).count() > 1)
+        .collect();
     let weight = |flat: usize| surface.weights().map_or(1.0, |w| w[flat]);
     let points = surface.control_points();
     let mut total_weight = 0.0;
@@ -143,10 +145,10 @@ pub fn weight_triples(
     for x in 0..m {
         for y in x + 1..m {
             for z in y + 1..m {
-                let chosen = [active[x], active[y], active[z]];
-                if chosen.iter().any(|&(flat, _)| repeated(flat)) {
+                if repeated[x] || repeated[y] || repeated[z] {
                     continue;
                 }
+                let chosen = [active[x], active[y], active[z]];
                 let mut rest_weight = total_weight;
                 let mut rest = total;
                 for &(flat, n) in &chosen {
@@ -237,18 +239,28 @@ pub fn triple_weights(triple: &WeightTriple, target: Point) -> Option<[f64; 3]> 
     Some(weights)
 }
 
+/// The stored flat indices of `pole` and of its periodic copies (a periodic direction stores
+/// its first poles again at its end; caller index `i` is stored at `i`, `i + caller_count`, …).
+fn stored_copies(surface: &Surface, pole: usize) -> impl Iterator<Item = usize> {
+    let [i, j] = caller_index(surface, pole);
+    let (u, v) = (surface.u(), surface.v());
+    let (count_v, step_u, step_v) = (v.count(), u.caller_count(), v.caller_count());
+    (i..u.count()).step_by(step_u).flat_map(move |row| {
+        (j..count_v)
+            .step_by(step_v)
+            .map(move |column| row * count_v + column)
+    })
+}
+
 /// The surface with the weights of the triple's poles (and of their periodic copies) set.
 pub fn with_triple_weights(surface: &Surface, poles: [usize; 3], weights: [f64; 3]) -> Surface {
     let count = surface.control_points().len();
     let mut new_weights = surface
         .weights()
         .map_or_else(|| vec![1.0; count], <[f64]>::to_vec);
-    for (pole, weight) in poles.iter().zip(weights) {
-        let caller = caller_index(surface, *pole);
-        for (flat, w) in new_weights.iter_mut().enumerate() {
-            if caller_index(surface, flat) == caller {
-                *w = weight;
-            }
+    for (pole, weight) in poles.into_iter().zip(weights) {
+        for flat in stored_copies(surface, pole) {
+            new_weights[flat] = weight;
         }
     }
     Surface::from_valid_parts(
@@ -314,14 +326,13 @@ pub fn weight_moves(
             entry.0 += 1;
             continue;
         }
-        let changed: Vec<usize> = (0..surface.control_points().len())
-            .filter(|&flat| {
-                triple
-                    .poles
-                    .iter()
-                    .any(|&pole| caller_index(surface, pole) == caller_index(surface, flat))
-            })
+        let mut changed: Vec<usize> = triple
+            .poles
+            .iter()
+            .flat_map(|&pole| stored_copies(surface, pole))
             .collect();
+        changed.sort_unstable();
+        changed.dedup();
         outcome.moves.push(SurfaceWeightMove {
             triple: *triple,
             weights,
@@ -533,5 +544,74 @@ impl SurfaceEditMethod for WeightsMethod {
                     solutions: found,
                 })
             })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::spline::KnotForm;
+    use crate::surface::SurfaceLimits;
+
+    /// A bicubic periodic in `u` (5 caller rows, stored with their first three again) and
+    /// clamped in `v` (4 columns).
+    fn periodic_in_u() -> Surface {
+        let poles: Vec<Vec<[f64; 3]>> = (0..5)
+            .map(|i| {
+                let angle = i as f64 * std::f64::consts::TAU / 5.0;
+                (0..4)
+                    .map(|j| [angle.cos(), angle.sin(), j as f64])
+                    .collect()
+            })
+            .collect();
+        let u_knots = [0.0, 1.0, 2.0, 3.0, 4.0, 5.0];
+        let u_multiplicities = [1; 6];
+        let v_knots = [0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0];
+        Surface::from_knot_forms(
+            (3, 3),
+            &poles,
+            (
+                KnotForm::Periodic {
+                    knots: &u_knots,
+                    multiplicities: &u_multiplicities,
+                },
+                KnotForm::Flat(&v_knots),
+            ),
+            None::<&[Vec<f64>]>,
+            &SurfaceLimits::default(),
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn stored_copies_are_every_stored_pole_of_the_same_caller_pole() {
+        let surface = periodic_in_u();
+        assert!(surface.u().count() > surface.u().caller_count());
+        let stored = surface.control_points().len();
+        for pole in 0..stored {
+            // By the definition: every stored pole whose caller index is the same.
+            let expected: Vec<usize> = (0..stored)
+                .filter(|&flat| caller_index(&surface, flat) == caller_index(&surface, pole))
+                .collect();
+            let found: Vec<usize> = stored_copies(&surface, pole).collect();
+            assert_eq!(found, expected, "pole {pole}");
+        }
+    }
+
+    #[test]
+    fn new_weights_reach_every_copy_and_nothing_else() {
+        let surface = periodic_in_u();
+        let poles = [1, 5, 6];
+        let moved = with_triple_weights(&surface, poles, [2.0, 3.0, 0.5]);
+        let weights = moved.weights().unwrap();
+        for (flat, &weight) in weights.iter().enumerate() {
+            let caller = caller_index(&surface, flat);
+            let expected = poles
+                .iter()
+                .zip([2.0, 3.0, 0.5])
+                .find(|(pole, _)| caller_index(&surface, **pole) == caller)
+                .map_or(1.0, |(_, w)| w);
+            assert_eq!(weight, expected, "stored pole {flat}");
+        }
     }
 }
