@@ -166,27 +166,51 @@ impl GapPatch {
     /// The parts `[0, t]` and `[t, 1]` along `σ` (`in_u`) or `τ`, each again on `[0, 1]²`.
     pub(crate) fn split(&self, in_u: bool, t: f64) -> (GapPatch, GapPatch) {
         let (m, n) = (self.m, self.n);
+        let width = n + 1;
+        let lerp = |a: &mut Lanes, b: &Lanes| {
+            *a = [
+                a[0] + t * (b[0] - a[0]),
+                a[1] + t * (b[1] - a[1]),
+                a[2] + t * (b[2] - a[2]),
+                a[3] + t * (b[3] - a[3]),
+            ];
+        };
         let mut left = self.clone();
         let mut right = self.clone();
-        let (len, lines, stride, step) = if in_u {
-            (m + 1, n + 1, 1, n + 1)
-        } else {
-            (n + 1, m + 1, n + 1, 1)
-        };
-        let mut line = vec![[0.0; 4]; len];
-        for o in 0..lines {
-            let at = |k: usize| o * stride + k * step;
-            for (k, value) in line.iter_mut().enumerate().take(len) {
-                *value = self.c[at(k)];
+        // De Casteljau at t: level `l` gives the left part's point `l` (its first) and the
+        // right part's point `len - 1 - l` (its last).
+        if in_u {
+            // Along σ: whole rows at once.
+            let mut rows = self.c.clone();
+            for level in 0..=m {
+                let last = m - level;
+                left.c[level * width..(level + 1) * width].copy_from_slice(&rows[..width]);
+                right.c[last * width..(last + 1) * width]
+                    .copy_from_slice(&rows[last * width..(last + 1) * width]);
+                for k in 0..last {
+                    let (low, high) = rows.split_at_mut((k + 1) * width);
+                    for (a, b) in low[k * width..].iter_mut().zip(&high[..width]) {
+                        lerp(a, b);
+                    }
+                }
             }
-            // De Casteljau at t: level `l` gives the left part's point `l` (its first) and
-            // the right part's point `len - 1 - l` (its last).
-            for level in 0..len {
-                left.c[at(level)] = line[0];
-                right.c[at(len - 1 - level)] = line[len - 1 - level];
-                for k in 0..len - 1 - level {
-                    let (a, b) = (line[k], line[k + 1]);
-                    line[k] = std::array::from_fn(|c| a[c] + t * (b[c] - a[c]));
+        } else {
+            // Along τ: each row on its own, in place in the right part (a point of level
+            // `l` at slot `n - l` is no longer blended after that level).
+            for ((row, left_row), right_row) in self
+                .c
+                .chunks_exact(width)
+                .zip(left.c.chunks_exact_mut(width))
+                .zip(right.c.chunks_exact_mut(width))
+            {
+                right_row.copy_from_slice(row);
+                for level in 0..=n {
+                    let last = n - level;
+                    left_row[level] = right_row[0];
+                    for k in 0..last {
+                        let next = right_row[k + 1];
+                        lerp(&mut right_row[k], &next);
+                    }
                 }
             }
         }
@@ -407,23 +431,25 @@ pub(crate) fn gap_patch(
         };
     }
     let (m, n) = (2 * p, 2 * q);
-    let scaled = |net: &[Lanes]| -> Vec<Lanes> {
-        (0..=p)
-            .flat_map(|i| (0..=q).map(move |j| (i, j)))
-            .map(|(i, j)| {
-                let f = BINOMIAL[p][i] * BINOMIAL[q][j];
-                net[i * (q + 1) + j].map(|x| x * f)
-            })
-            .collect()
-    };
-    let (a, b) = (scaled(old), scaled(new));
-    let mut c = vec![[0.0; 4]; (m + 1) * (n + 1)];
+    let (width, out_width) = (q + 1, n + 1);
+    // Both nets in the scaled basis.
+    let (mut a, mut b) = (Vec::with_capacity(old.len()), Vec::with_capacity(new.len()));
     for i in 0..=p {
         for j in 0..=q {
-            let x = a[i * (q + 1) + j];
+            let f = BINOMIAL[p][i] * BINOMIAL[q][j];
+            let (x, y) = (old[i * width + j], new[i * width + j]);
+            a.push([x[0] * f, x[1] * f, x[2] * f, x[3] * f]);
+            b.push([y[0] * f, y[1] * f, y[2] * f, y[3] * f]);
+        }
+    }
+    let mut c = vec![[0.0; 4]; (m + 1) * out_width];
+    for i in 0..=p {
+        for j in 0..=q {
+            let x = a[i * width + j];
             for k in 0..=p {
-                let out = &mut c[(i + k) * (n + 1) + j..(i + k) * (n + 1) + j + q + 1];
-                for (o, y) in out.iter_mut().zip(&b[k * (q + 1)..(k + 1) * (q + 1)]) {
+                let start = (i + k) * out_width + j;
+                let out = &mut c[start..start + width];
+                for (o, y) in out.iter_mut().zip(&b[k * width..(k + 1) * width]) {
                     o[0] += x[0] * y[3] - y[0] * x[3];
                     o[1] += x[1] * y[3] - y[1] * x[3];
                     o[2] += x[2] * y[3] - y[2] * x[3];
@@ -435,7 +461,8 @@ pub(crate) fn gap_patch(
     for i in 0..=m {
         for j in 0..=n {
             let f = BINOMIAL[m][i] * BINOMIAL[n][j];
-            c[i * (n + 1) + j] = c[i * (n + 1) + j].map(|x| x / f);
+            let h = &mut c[i * out_width + j];
+            *h = [h[0] / f, h[1] / f, h[2] / f, h[3] / f];
         }
     }
     GapPatch { m, n, c }
@@ -478,7 +505,13 @@ pub fn surface_max_deviation(old: &Surface, new: &Surface, rect: [(f64, f64); 2]
     let us = cuts(old.u().knots(), new.u().knots(), ranges[0]);
     let vs = cuts(old.v().knots(), new.v().knots(), ranges[1]);
     let rational = old.is_rational() || new.is_rational();
-    let floor = (ZERO_GAP * surface_edit_size(old).max(surface_edit_size(new))).powi(2);
+    // The size depends on the poles only, which knot and weight edits keep.
+    let size = if old.control_points() == new.control_points() {
+        surface_edit_size(old)
+    } else {
+        surface_edit_size(old).max(surface_edit_size(new))
+    };
+    let floor = (ZERO_GAP * size).powi(2);
     let knots_only = !rational
         && (old.u().count(), old.v().count()) == (new.u().count(), new.v().count())
         && old.homogeneous() == new.homogeneous();
@@ -630,12 +663,23 @@ fn convert(matrix: &[f64], points: &[[f64; 3]], out: &mut [[f64; 3]]) {
 /// runs over whole rows of numbers (and vectorizes), where converting line by line did not.
 fn convert_lines(matrix: &[f64], lines: &[f64], width: usize, out: &mut [f64]) {
     let n = out.len() / width;
+    let line = |i: usize| &lines[i * width..(i + 1) * width];
     for (r, out_row) in out.chunks_exact_mut(width).enumerate() {
-        out_row.fill(0.0);
-        for (i, line) in lines.chunks_exact(width).take(n).enumerate() {
-            let weight = matrix[r * n + i];
-            for (o, &x) in out_row.iter_mut().zip(line) {
-                *o += weight * x;
+        let weights = &matrix[r * n..(r + 1) * n];
+        if let [w0, w1, w2, w3] = *weights {
+            // Cubics (most surfaces): the four terms in one pass over the row.
+            let terms = line(0).iter().zip(line(1)).zip(line(2)).zip(line(3));
+            for (o, (((x0, x1), x2), x3)) in out_row.iter_mut().zip(terms) {
+                *o = w0 * x0 + w1 * x1 + w2 * x2 + w3 * x3;
+            }
+        } else {
+            for (o, &x) in out_row.iter_mut().zip(line(0)) {
+                *o = weights[0] * x;
+            }
+            for (i, &weight) in weights.iter().enumerate().skip(1) {
+                for (o, &x) in out_row.iter_mut().zip(line(i)) {
+                    *o += weight * x;
+                }
             }
         }
     }
