@@ -204,9 +204,9 @@ impl GapPatch {
                 .zip(right.c.chunks_exact_mut(width))
             {
                 right_row.copy_from_slice(row);
-                for level in 0..=n {
+                for (level, left_point) in left_row.iter_mut().enumerate() {
                     let last = n - level;
-                    left_row[level] = right_row[0];
+                    *left_point = right_row[0];
                     for k in 0..last {
                         let next = right_row[k + 1];
                         lerp(&mut right_row[k], &next);
