@@ -444,6 +444,22 @@ proptest! {
     }
 }
 
+/// A polynomial bicubic of 7 × 7 poles, `pole(i, j)` at the indices, clamped knots with
+/// three uneven interior values in both directions.
+fn bicubic_7x7(pole: impl Fn(f64, f64) -> [f64; 3]) -> Plain {
+    let clamped = vec![0.0, 0.0, 0.0, 0.0, 0.3, 0.55, 0.8, 1.0, 1.0, 1.0, 1.0];
+    Plain {
+        p: 3,
+        q: 3,
+        knots_u: clamped.clone(),
+        knots_v: clamped,
+        poles: (0..7)
+            .map(|i| (0..7).map(|j| pole(i as f64, j as f64)).collect())
+            .collect(),
+        weights: None,
+    }
+}
+
 /// The knot method through the edit: a target planted by moving one interior `u`-knot of a
 /// planar bicubic (every iso-curve lies in `z = 0`, so the pairs reach targets there) is
 /// reached by knot solutions, each passing every check of the brute-force evaluator (the
@@ -452,24 +468,7 @@ proptest! {
 /// new surfaces compare on one rectangle.
 #[test]
 fn the_knot_method_reaches_a_planted_target() {
-    let clamped = vec![0.0, 0.0, 0.0, 0.0, 0.3, 0.55, 0.8, 1.0, 1.0, 1.0, 1.0];
-    let plain = Plain {
-        p: 3,
-        q: 3,
-        knots_u: clamped.clone(),
-        knots_v: clamped,
-        poles: (0..7)
-            .map(|i| {
-                (0..7)
-                    .map(|j| {
-                        let (x, y) = (i as f64, j as f64);
-                        [x + 0.2 * (0.9 * y).sin(), y + 0.3 * (0.7 * x).cos(), 0.0]
-                    })
-                    .collect()
-            })
-            .collect(),
-        weights: None,
-    };
+    let plain = bicubic_7x7(|x, y| [x + 0.2 * (0.9 * y).sin(), y + 0.3 * (0.7 * x).cos(), 0.0]);
     let picked = (0.62, 0.45);
     let mut planted = plain.clone();
     planted.knots_u[5] = 0.5;
@@ -514,28 +513,13 @@ fn the_knot_method_reaches_a_planted_target() {
 /// a pinned point that some solutions break.
 #[test]
 fn the_answer_does_not_depend_on_the_threads_solving_it() {
-    let clamped = vec![0.0, 0.0, 0.0, 0.0, 0.3, 0.55, 0.8, 1.0, 1.0, 1.0, 1.0];
-    let plain = Plain {
-        p: 3,
-        q: 3,
-        knots_u: clamped.clone(),
-        knots_v: clamped,
-        poles: (0..7)
-            .map(|i| {
-                (0..7)
-                    .map(|j| {
-                        let (x, y) = (i as f64, j as f64);
-                        [
-                            x + 0.2 * (0.9 * y).sin(),
-                            y,
-                            0.4 * (0.7 * x).cos() * (0.5 * y).sin(),
-                        ]
-                    })
-                    .collect()
-            })
-            .collect(),
-        weights: None,
-    };
+    let plain = bicubic_7x7(|x, y| {
+        [
+            x + 0.2 * (0.9 * y).sin(),
+            y,
+            0.4 * (0.7 * x).cos() * (0.5 * y).sin(),
+        ]
+    });
     let surface = plain.surface();
     let picked = (0.62, 0.45);
     // Targets a knot move reaches: one interior knot moved in u, then in v.
