@@ -27,12 +27,9 @@
 //! vanishes, and pass the test after few more splits (one to four per solution for the
 //! worked example). Where an interval is split never changes what the test certifies.
 //!
-//! One algorithm in one file (about 630 lines, then its unit tests): the search, its split
-//! rule and the piece extraction it inlines into fixed-size loops for cubics; split apart,
-//! the pieces would only be read together.
-//!
-//! One file (about 640 lines of code, then its tests) over 600 on purpose: the
-//! curve deviation's cells, bounds and branch and bound certify one answer together.
+//! One algorithm in one file (about 640 lines, then its unit tests), over 600 on purpose: the
+//! search, its split rule and the piece extraction it inlines into fixed-size loops for
+//! cubics; split apart, the pieces would only be read together.
 
 use crate::spline::bernstein::{
     BINOMIAL, INVERSE_BINOMIAL, MAX_RATIO_DEGREE, add_square, convolve, values_and_derivatives,
