@@ -777,15 +777,57 @@ const FRAME_MS: f64 = 16.0;
 /// Pointer moves of the measured 3D drag.
 const MOVES_3D: usize = 120;
 
+/// Runs of the 3D drag at most: as in tests/editor/timing.rs, a timing on a machine shared
+/// with other work is retried, and the frame budget holds when one run meets it (every run
+/// is reported).
+const RUNS_3D: usize = 3;
+
+/// What one measured 3D drag gave.
+struct Drag3d {
+    /// Pointer event to the preview drawn (the WebGL calls done), 95th percentile, ms.
+    p95: f64,
+    /// The page's part (evaluating the solution at the mesh's parameters and drawing), p95.
+    p95_draw: f64,
+    previews: usize,
+    report: String,
+}
+
 /// Drag-to-redraw on a 30 × 30-pole bicubic (knots and control points, the page's default
-/// methods for a surface): 120 pointer moves at 60 Hz around the picked point; for every
-/// preview the page keeps the pointer event's time and when the preview was drawn (the WebGL
-/// calls done). Reports the 95th percentile and its parts in
-/// `target/editor-3d-drag-timings.txt` (run alone for numbers:
-/// `cargo test --release --test editor drag_to_redraw_in_3d -- --nocapture`); asserts that a
-/// preview was drawn for at least every fourth move and the page's own part within a frame.
+/// methods for a surface): 120 pointer moves at 60 Hz around the picked point. For every
+/// preview the page keeps the pointer event's time, when the preview was drawn (the WebGL
+/// calls done, as the 2D editor's preview is in the page when its drawing is) and when that
+/// frame was rasterized (the page waits for it right after drawing). Reports the 95th
+/// percentiles and their parts in `target/editor-3d-drag-timings.txt` (run alone for
+/// numbers: `cargo test --release --test editor drag_to_redraw_in_3d -- --nocapture`).
+/// Asserts that a preview was drawn for at least every fourth move and the page's own part
+/// within a frame in every build, and in the optimized build (the service's solve is some
+/// 10× slower unoptimized) the p95 within a frame, in one of up to three runs.
 #[tokio::test]
-async fn drag_to_redraw_in_3d_on_a_30_by_30_surface_reports_its_timings() {
+async fn drag_to_redraw_in_3d_on_a_30_by_30_surface_within_a_frame() {
+    let optimized = !cfg!(debug_assertions);
+    let mut report = String::new();
+    let mut within = false;
+    for _ in 0..RUNS_3D {
+        let measured = measure_3d_drag().await;
+        println!("{}", measured.report);
+        report += &measured.report;
+        assert!(measured.p95_draw <= FRAME_MS, "{}", measured.report);
+        assert!(measured.previews * 4 >= MOVES_3D, "{}", measured.report);
+        within = measured.p95 <= FRAME_MS;
+        if within || !optimized {
+            break;
+        }
+    }
+    std::fs::create_dir_all(target_dir()).unwrap();
+    std::fs::write(target_dir().join("editor-3d-drag-timings.txt"), &report).unwrap();
+    assert!(
+        within || !optimized,
+        "not within a frame ({FRAME_MS} ms at p95) in {RUNS_3D} runs:\n{report}"
+    );
+}
+
+/// One measured drag (drag_to_redraw_in_3d_on_a_30_by_30_surface_within_a_frame).
+async fn measure_3d_drag() -> Drag3d {
     // The browser and the service share the machine's cores: one solve thread per request
     // (as in tests/editor/timing.rs).
     let app = spawn_app_with(|config| config.solve_threads = 1).await;
@@ -828,22 +870,23 @@ async fn drag_to_redraw_in_3d_on_a_30_by_30_surface_reports_its_timings() {
         1000.0 * (seconds_after - seconds_before) / (count_after - count_before).max(1.0);
     let timings = page
         .run(
-            "return window.knotshapeSpace.timings.map(t => [t.drawn - t.stamp, t.sent - t.stamp, t.answered - t.sent, t.drawn - t.answered, (t.frame ?? t.drawn) - t.drawn, t.handled - t.stamp]);",
+            "return window.knotshapeSpace.timings.map(t => [t.drawn - t.stamp, t.sent - t.stamp, \
+             t.answered - t.sent, t.drawn - t.answered, t.rasterized - t.stamp, t.handled - t.stamp]);",
             vec![],
         )
         .await;
     let rows: Vec<Vec<f64>> = timings.as_array().unwrap().iter().map(floats).collect();
     let column = |k: usize| rows.iter().map(|row| row[k]).collect::<Vec<f64>>();
-    let mut total = column(0);
-    let p95_total = p95(&mut total);
-    let median = total[total.len() / 2];
+    let median = |mut values: Vec<f64>| {
+        values.sort_by(f64::total_cmp);
+        values[values.len() / 2]
+    };
+    let p95_total = p95(&mut column(0));
+    let p95_wait = p95(&mut column(1));
     let p95_request = p95(&mut column(2));
     let p95_draw = p95(&mut column(3));
-    let p95_wait = p95(&mut column(1));
-    let p95_frame = p95(&mut column(4));
-    let mut handled = column(5);
-    let p95_handled = p95(&mut handled);
-    let median_handled = handled[handled.len() / 2];
+    let p95_rasterized = p95(&mut column(4));
+    let p95_handled = p95(&mut column(5));
     let size = page
         .run(
             "const c = document.getElementById('space'); return [c.width, c.height];",
@@ -851,25 +894,26 @@ async fn drag_to_redraw_in_3d_on_a_30_by_30_surface_reports_its_timings() {
         )
         .await;
     let report = format!(
-        "3D drag-to-redraw, bicubic 30 x 30 poles ({triangles} triangles), {} previews: \
-         p95 {p95_total:.1} ms, median {median:.1} ms; p95 of the parts: event to its handler \
-         {p95_handled:.1} ms (median {median_handled:.1} ms), event to request {p95_wait:.1} ms, request {p95_request:.1} ms (the server's mean {server_ms:.2} ms over \
-         {} solves), preview drawn {p95_draw:.1} ms, then the next frame {p95_frame:.1} ms; canvas {size}; the page's main thread over the \
+        "3D drag-to-redraw, bicubic 30 x 30 poles ({triangles} triangles), {} previews of \
+         {MOVES_3D} moves: p95 {p95_total:.1} ms, median {:.1} ms; to the frame rasterized: \
+         p95 {p95_rasterized:.1} ms, median {:.1} ms; p95 of the parts: event to its handler \
+         {p95_handled:.1} ms (median {:.1} ms), event to request {p95_wait:.1} ms, request \
+         {p95_request:.1} ms (the server's mean {server_ms:.2} ms over {} solves), preview \
+         drawn {p95_draw:.1} ms; canvas {size}; the page's main thread over the \
          {elapsed_ms:.0} ms drag: {}\n",
         rows.len(),
+        median(column(0)),
+        median(column(4)),
+        median(column(5)),
         count_after - count_before,
         work.join(", ")
     );
-    println!("{report}");
-    std::fs::create_dir_all(target_dir()).unwrap();
-    std::fs::write(target_dir().join("editor-3d-drag-timings.txt"), &report).unwrap();
-    // The page's own part (evaluating the solution at the mesh's parameters and issuing the
-    // WebGL draw) is within a frame. The whole loop is not, in headless Chromium without a
-    // GPU: each WebGL frame is copied back on the page's main thread (software compositing,
-    // about 7 ms a frame in a trace), which delays the next event and answer
-    // (docs/performance.md, "The editor in 3D"). The test reports it; it asserts what holds.
-    assert!(p95_draw <= FRAME_MS, "{report}");
-    assert!(rows.len() * 4 >= moves.len(), "{report}");
     assert_eq!(page.script_errors().await, Vec::<String>::new());
     browser.close().await;
+    Drag3d {
+        p95: p95_total,
+        p95_draw,
+        previews: rows.len(),
+        report,
+    }
 }

@@ -31,6 +31,11 @@ const REMESH_FACTOR = 2;
 const TOLERANCE_PIXELS = 0.5;
 /** Pick distance to a curve, in pixels. */
 const CURVE_PICK_PIXELS = 6;
+/** A drag asks for the regions of its picked point once the pointer has rested this long
+ * (milliseconds), or at a release without a move. While moves stream, computing them (for a
+ * 30 × 30-pole surface some 20 ms of the service's time and 10 of the page's) would hold up
+ * the previews. */
+const REGIONS_AFTER_REST_MS = 150;
 /** Timings kept (the latest). */
 const TIMINGS_KEPT = 2000;
 
@@ -53,6 +58,9 @@ export function createEditor(view, notify) {
     message: "",
     error: "",
     busy: 0,
+    /** Per preview of a drag (tests): the pointer event's time stamp, when its handler ran,
+     * when its request went and its answer came, when the preview was drawn (the WebGL calls
+     * done) and when that frame was rasterized. */
     timings: [],
     /** Counts of the moves a drag saw and previewed (tests). */
     moves: { seen: 0, previewed: 0 },
@@ -229,23 +237,30 @@ export function createEditor(view, notify) {
     return { index, point, parameter, ray: raycaster.ray };
   };
 
-  /** Refines a hit on the service: the exact closest point of the object to the point hit,
-   * its parameter, and the direction Alt drags along (unit normal / principal normal). */
+  /** Refines a hit on the service: the exact closest point of the object to the point hit
+   * and its parameter, and (a promise: a drag does not wait for it) the direction Alt drags
+   * along (unit normal / principal normal). */
   async function refine(item, hit) {
     if (item.kind === "surface") {
       const answer = await api.surfaceClosestPoint(item.shape, hit.point);
       if (!answer.ok) return { error: answer.problem };
       const result = answer.value.results[0];
       const parameter = [result.u, result.v];
-      const frame = await api.surfaceNormals(item.shape, [parameter]);
-      const normal = frame.ok ? frame.value.normals?.[0] ?? null : null;
-      return { parameter, point: result.point, normal };
+      return { parameter, point: result.point, normal: surfaceNormal(item, parameter) };
     }
     const answer = await api.closestPoint(item.shape, hit.point);
     if (!answer.ok) return { error: answer.problem };
     const result = answer.value.results?.[0] ?? answer.value;
     const t = result.parameter ?? result.t;
-    const point = result.point;
+    return { parameter: t, point: result.point, normal: curveNormal(item, t) };
+  }
+
+  async function surfaceNormal(item, parameter) {
+    const frame = await api.surfaceNormals(item.shape, [parameter]);
+    return frame.ok ? frame.value.normals?.[0] ?? null : null;
+  }
+
+  async function curveNormal(item, t) {
     const frame = await api.curveFrames(item.shape, [t]);
     let normal = null;
     if (frame.ok) {
@@ -255,7 +270,7 @@ export function createEditor(view, notify) {
       const length = Math.hypot(...n);
       if (length > 1e-12 * Math.hypot(...d2) && length > 0) normal = n.map((x) => x / length);
     }
-    return { parameter: t, point, normal };
+    return normal;
   }
 
   // Dragging -----------------------------------------------------------------------------
@@ -272,6 +287,8 @@ export function createEditor(view, notify) {
       point: hit.point,
       normal: null,
       refined: false,
+      regionsAsked: false,
+      regionsTimer: null,
       target: null,
       alongNormal: false,
       inFlight: false,
@@ -282,9 +299,12 @@ export function createEditor(view, notify) {
       cancelled: false,
     };
     editor.drag = drag;
+    // The last pick's regions go; this pick's come with its first preview.
+    clearRegions();
     view.setInteractive(true);
     editor.solutions = [];
     showMarker(editor.markers.pick, hit.point);
+    askRegionsAtRest(drag);
     notify();
     refine(item, hit).then((refined) => {
       if (drag.cancelled) return;
@@ -295,15 +315,22 @@ export function createEditor(view, notify) {
       }
       drag.parameter = refined.parameter;
       drag.point = refined.point;
-      drag.normal = refined.normal;
+      refined.normal.then((normal) => {
+        drag.normal = normal;
+      });
       // A surface's drag sends only the piece the move can change (nurbs.js surfacePiece).
       drag.piece = item.kind === "surface" && item.plain ? surfacePiece(item.plain, refined.parameter) : null;
       drag.refined = true;
       editor.pick = { index: hit.index, parameter: refined.parameter, point: refined.point };
-      showMarker(editor.markers.pick, refined.point);
-      fetchRegions(item, refined.parameter, drag.piece?.shape ?? item.shape);
+      moveMarker(editor.markers.pick, refined.point);
+      drawUnlessPreviewComes();
       pump(drag);
     });
+    // The drag's resolution is drawn now, while the service refines the pick: the browser
+    // allocates the smaller drawing buffer (with software WebGL 15–20 ms), which at the next
+    // frame would hold up the first moves.
+    view.renderNow();
+    view.finishFrame();
   };
 
   /** The drag's target for the pointer at `pixel`: on the plane through the picked point
@@ -333,6 +360,7 @@ export function createEditor(view, notify) {
     const target = editor.targetAt(pixel, alongNormal);
     if (!target) return;
     editor.moves.seen += 1;
+    askRegionsAtRest(drag);
     drag.target = target;
     drag.waiting = { target, stamp, handled: performance.now() };
     // The target's marker is drawn with the move's preview (one render per move).
@@ -363,6 +391,7 @@ export function createEditor(view, notify) {
     if (drag.cancelled) return;
     if (!answer.ok) {
       failed(answer.problem, "Cannot move the point: ");
+      view.request();
     } else {
       const solutions = answer.value.solutions ?? [];
       editor.solutions = solutions;
@@ -372,13 +401,14 @@ export function createEditor(view, notify) {
         drag.shownTarget = move.target;
         preview(item, drag.shown, solutions[0].affected_domain ?? null);
         const drawn = performance.now();
+        // The next move's request goes out first; the frame is rasterized while the
+        // service solves it.
+        pump(drag);
+        view.finishFrame();
+        const rasterized = performance.now();
         editor.moves.previewed += 1;
-        const timing = { stamp: move.stamp, handled: move.handled, sent, answered, drawn, frame: null };
-        editor.timings.push(timing);
+        editor.timings.push({ stamp: move.stamp, handled: move.handled, sent, answered, drawn, rasterized });
         if (editor.timings.length > TIMINGS_KEPT) editor.timings.shift();
-        requestAnimationFrame((frameTime) => {
-          timing.frame = frameTime;
-        });
         editor.message = describe(solutions[0], solutions.length);
         editor.error = "";
       } else {
@@ -389,6 +419,26 @@ export function createEditor(view, notify) {
       notify();
     }
     pump(drag);
+  }
+
+  /** Asks for the regions of the drag's picked point once the pointer has rested for
+   * `REGIONS_AFTER_REST_MS` (each move starts the wait again). */
+  function askRegionsAtRest(drag) {
+    clearTimeout(drag.regionsTimer);
+    if (drag.regionsAsked) return;
+    drag.regionsTimer = setTimeout(() => {
+      if (editor.drag !== drag) return;
+      if (drag.refined) askRegions(drag);
+      else askRegionsAtRest(drag);
+    }, REGIONS_AFTER_REST_MS);
+  }
+
+  /** Asks for the regions of the drag's picked point, once. */
+  function askRegions(drag) {
+    clearTimeout(drag.regionsTimer);
+    if (drag.regionsAsked) return;
+    drag.regionsAsked = true;
+    fetchRegions(drag.item, drag.parameter, drag.piece?.shape ?? drag.item.shape);
   }
 
   /** The whole object after `solution` (of the piece the drag sent, or of the whole). */
@@ -417,10 +467,13 @@ export function createEditor(view, notify) {
     view.setInteractive(false);
     hideTarget();
     if (!drag.shown) {
+      // A press without a move keeps its pick: its regions are drawn.
+      askRegions(drag);
       redraw(drag.item);
       notify();
       return;
     }
+    clearTimeout(drag.regionsTimer);
     editor.lastCommit = { index: editor.items.indexOf(drag.item), parameter: drag.parameter, target: drag.shownTarget, solution: drag.solution };
     editor.lastPiece = drag.piece;
     commit(drag.item, drag.committedShape, drag.shown, describe(drag.solution, editor.solutions.length));
@@ -459,6 +512,7 @@ export function createEditor(view, notify) {
     const drag = editor.drag;
     if (!drag) return;
     drag.cancelled = true;
+    clearTimeout(drag.regionsTimer);
     editor.drag = null;
     view.setInteractive(false);
     hideTarget();
@@ -498,8 +552,10 @@ export function createEditor(view, notify) {
 
   // Regions ------------------------------------------------------------------------------
 
+  /** Takes the regions out of the view (a frame is drawn only when there were some). */
   function clearRegions() {
-    if (editor.regions) view.scene.remove(editor.regions);
+    if (!editor.regions) return;
+    view.scene.remove(editor.regions);
     editor.regions = null;
     view.request();
   }
@@ -514,8 +570,17 @@ export function createEditor(view, notify) {
     editor.regions = regionsGroup(item.origin, answer.value, item.kind);
     editor.regions.visible = editor.showRegions;
     view.scene.add(editor.regions);
-    view.request();
+    drawUnlessPreviewComes();
     notify();
+  }
+
+  /** Asks for a frame, unless a drag's request is on its way or about to go: its preview
+   * draws the view anyway, and during a drag every extra frame holds up the next move
+   * (each is rasterized, with software WebGL for several milliseconds). */
+  function drawUnlessPreviewComes() {
+    const drag = editor.drag;
+    if (drag && !drag.cancelled && !drag.released && (drag.inFlight || (drag.waiting && drag.refined))) return;
+    view.request();
   }
 
   // Markers ------------------------------------------------------------------------------

@@ -8,7 +8,7 @@
 import { createView } from "./scene.js";
 import { createEditor } from "./editing.js";
 import { buildSpacePanel, drawSpacePanel, VIEW_BUTTONS } from "./panel.js";
-import { boxOf, polesOf } from "./objects.js";
+import { boxOf, polesOf, warmUpGroup } from "./objects.js";
 
 /** Whether the browser dispatches `pointerrawupdate` (Chromium, in secure contexts). */
 const RAW_UPDATES = typeof window !== "undefined" && "onpointerrawupdate" in window;
@@ -208,6 +208,16 @@ export function setupSpace(elements) {
   });
   window.addEventListener("blur", () => setSpaceHeld(false));
 
+  // The first time the view is shown, it draws one of every kind of primitive it draws
+  // (objects.js warmUpGroup): the browser compiles their shaders and states then, not during
+  // the first moves of a drag.
+  let warmedUp = false;
+  const warmUpOnce = () => {
+    if (warmedUp) return;
+    warmedUp = true;
+    view.warmUp(warmUpGroup());
+  };
+
   const space = {
     view,
     editor,
@@ -216,12 +226,14 @@ export function setupSpace(elements) {
     open: (objects, message) => {
       document.body.dataset.mode = "3d";
       view.resize(elements.frame.clientWidth, elements.frame.clientHeight);
+      warmUpOnce();
       return editor.open(objects, message);
     },
     /** Shows the 3D view with what it had. */
     show: () => {
       document.body.dataset.mode = "3d";
       view.resize(elements.frame.clientWidth, elements.frame.clientHeight);
+      warmUpOnce();
       notify();
     },
     hide: () => {

@@ -20,6 +20,23 @@ export const COLOURS = {
   weightRegion: 0x7b3294,
 };
 
+/** Every material the view draws with, one constructor each: the objects below and the
+ * warm-up group (warmUpGroup) are made from these, so the warm-up draws with what the
+ * objects will. */
+const MATERIALS = {
+  surface: (colour) =>
+    new THREE.MeshLambertMaterial({ color: colour, side: THREE.DoubleSide, polygonOffset: true, polygonOffsetFactor: 1, polygonOffsetUnits: 1 }),
+  iso: () => new THREE.LineBasicMaterial({ color: COLOURS.iso, transparent: true, opacity: 0.55 }),
+  line: (colour, opacity = 1) => new THREE.LineBasicMaterial({ color: colour, transparent: opacity < 1, opacity }),
+  poles: () => new THREE.PointsMaterial({ color: COLOURS.net, size: 5, sizeAttenuation: false }),
+  marker: (colour, size) => new THREE.PointsMaterial({ color: colour, size, sizeAttenuation: false, depthTest: false }),
+  region: (colour) =>
+    new THREE.MeshBasicMaterial({ color: colour, transparent: true, opacity: 0.18, side: THREE.DoubleSide, depthWrite: false }),
+};
+
+/** The net's opacity. */
+const NET_OPACITY = 0.8;
+
 /** The most chords per knot span an iso-line gets (isoSpans). */
 const ISO_MAX_SAMPLES_PER_SPAN = 12;
 
@@ -54,8 +71,7 @@ function lineSegments(origin, segments, colour, opacity = 1) {
   });
   const geometry = new THREE.BufferGeometry();
   geometry.setAttribute("position", new THREE.BufferAttribute(positions, 3));
-  const material = new THREE.LineBasicMaterial({ color: colour, transparent: opacity < 1, opacity });
-  return new THREE.LineSegments(geometry, material);
+  return new THREE.LineSegments(geometry, MATERIALS.line(colour, opacity));
 }
 
 /** The control net's segments: rows and columns of a surface's poles, a curve's polygon. */
@@ -184,14 +200,7 @@ export function buildGroup(item, { selected, showNet, showIso }) {
     geometry.setAttribute("normal", new THREE.BufferAttribute(normals, 3));
     geometry.setIndex(mesh.triangles.flat());
     geometry.computeBoundingSphere();
-    const material = new THREE.MeshLambertMaterial({
-      color: selected ? COLOURS.surface : COLOURS.surfaceIdle,
-      side: THREE.DoubleSide,
-      polygonOffset: true,
-      polygonOffsetFactor: 1,
-      polygonOffsetUnits: 1,
-    });
-    const body = new THREE.Mesh(geometry, material);
+    const body = new THREE.Mesh(geometry, MATERIALS.surface(selected ? COLOURS.surface : COLOURS.surfaceIdle));
     body.name = "body";
     group.add(body);
     if (item.plain) {
@@ -200,7 +209,7 @@ export function buildGroup(item, { selected, showNet, showIso }) {
       evaluateInto(positions, parameters, surfaceEvaluator(item.plain), item.origin, null);
       const isoGeometry = new THREE.BufferGeometry();
       isoGeometry.setAttribute("position", new THREE.BufferAttribute(positions, 3));
-      const iso = new THREE.LineSegments(isoGeometry, new THREE.LineBasicMaterial({ color: COLOURS.iso, transparent: true, opacity: 0.55 }));
+      const iso = new THREE.LineSegments(isoGeometry, MATERIALS.iso());
       iso.userData.parameters = parameters;
       iso.name = "iso";
       iso.visible = showIso;
@@ -212,11 +221,11 @@ export function buildGroup(item, { selected, showNet, showIso }) {
     const geometry = new THREE.BufferGeometry();
     geometry.setAttribute("position", new THREE.BufferAttribute(positions, 3));
     geometry.computeBoundingSphere();
-    const body = new THREE.Line(geometry, new THREE.LineBasicMaterial({ color: selected ? COLOURS.curve : COLOURS.curveIdle }));
+    const body = new THREE.Line(geometry, MATERIALS.line(selected ? COLOURS.curve : COLOURS.curveIdle));
     body.name = "body";
     group.add(body);
   }
-  const net = lineSegments(item.origin, netSegments(item), COLOURS.net, 0.8);
+  const net = lineSegments(item.origin, netSegments(item), COLOURS.net, NET_OPACITY);
   net.name = "net";
   net.visible = showNet && selected;
   const poles = polesOf(item);
@@ -224,7 +233,7 @@ export function buildGroup(item, { selected, showNet, showIso }) {
   poles.forEach((p, i) => polePositions.set(relative(item.origin, p), 3 * i));
   const poleGeometry = new THREE.BufferGeometry();
   poleGeometry.setAttribute("position", new THREE.BufferAttribute(polePositions, 3));
-  const points = new THREE.Points(poleGeometry, new THREE.PointsMaterial({ color: COLOURS.net, size: 5, sizeAttenuation: false }));
+  const points = new THREE.Points(poleGeometry, MATERIALS.poles());
   points.name = "poles";
   net.add(points);
   group.add(net);
@@ -290,8 +299,7 @@ function replaceSegments(lines, origin, segments) {
 export function marker(point, colour, size = 9) {
   const geometry = new THREE.BufferGeometry();
   geometry.setAttribute("position", new THREE.BufferAttribute(new Float32Array(point), 3));
-  const material = new THREE.PointsMaterial({ color: colour, size, sizeAttenuation: false, depthTest: false });
-  const points = new THREE.Points(geometry, material);
+  const points = new THREE.Points(geometry, MATERIALS.marker(colour, size));
   points.renderOrder = 10;
   return points;
 }
@@ -357,8 +365,7 @@ export function regionsGroup(origin, answer, kind) {
   const add = (triangles, colour, name) => {
     if (triangles.length === 0) return;
     const geometry = new THREE.BufferGeometry().setFromPoints(triangles);
-    const material = new THREE.MeshBasicMaterial({ color: colour, transparent: true, opacity: 0.18, side: THREE.DoubleSide, depthWrite: false });
-    const mesh = new THREE.Mesh(geometry, material);
+    const mesh = new THREE.Mesh(geometry, MATERIALS.region(colour));
     mesh.name = name;
     mesh.renderOrder = 5;
     group.add(mesh);
@@ -366,5 +373,34 @@ export function regionsGroup(origin, answer, kind) {
   add(knotTriangles, COLOURS.knotRegion, "knot-regions");
   add(weightTriangles, COLOURS.weightRegion, "weight-regions");
   group.userData.counts = { knots: knotTriangles.length / 3, weights: weightTriangles.length / 3 };
+  return group;
+}
+
+/** One degenerate primitive (its vertices coincide: nothing shows) of every kind the view
+ * draws, with the objects' materials and attributes, never culled. Drawing it once before
+ * the objects makes the browser compile the shaders and pipeline states that a drag would
+ * otherwise compile on its first moves, when the regions and the first previews come (with
+ * software WebGL about 60 ms, tests/editor/space.rs). */
+export function warmUpGroup() {
+  const group = new THREE.Group();
+  const geometry = (vertices, { normals = false, indexed = false } = {}) => {
+    const made = new THREE.BufferGeometry();
+    made.setAttribute("position", new THREE.BufferAttribute(new Float32Array(3 * vertices), 3));
+    if (normals) made.setAttribute("normal", new THREE.BufferAttribute(new Float32Array(3 * vertices).fill(1), 3));
+    if (indexed) made.setIndex([0, 1, 2]);
+    return made;
+  };
+  const add = (object, renderOrder = 0) => {
+    object.frustumCulled = false;
+    object.renderOrder = renderOrder;
+    group.add(object);
+  };
+  add(new THREE.Mesh(geometry(3, { normals: true, indexed: true }), MATERIALS.surface(COLOURS.surface)));
+  add(new THREE.LineSegments(geometry(2), MATERIALS.iso()));
+  add(new THREE.Line(geometry(2), MATERIALS.line(COLOURS.curve)));
+  add(new THREE.LineSegments(geometry(2), MATERIALS.line(COLOURS.net, NET_OPACITY)));
+  add(new THREE.Points(geometry(1), MATERIALS.poles()));
+  add(new THREE.Points(geometry(1), MATERIALS.marker(COLOURS.pick, 9)), 10);
+  add(new THREE.Mesh(geometry(3), MATERIALS.region(COLOURS.knotRegion)), 5);
   return group;
 }

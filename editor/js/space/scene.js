@@ -77,10 +77,37 @@ export function createView(canvas, onChange) {
   view.request = () => {
     if (view.pending) return;
     view.pending = true;
-    requestAnimationFrame(draw);
+    requestAnimationFrame(() => {
+      if (view.pending) draw();
+    });
   };
-  /** Renders now (a drag's preview: drawn in the same task as its answer). */
+  /** Renders now (a drag's preview: drawn in the same task as its answer); a frame already
+   * requested is then not drawn again. */
   view.renderNow = () => draw();
+
+  /** Draws the scene once with `group` in it (the warm-up of objects.js), waits until
+   * the frame is rasterized, and takes `group` out again. */
+  view.warmUp = (group) => {
+    scene.add(group);
+    draw();
+    view.finishFrame();
+    scene.remove(group);
+    // The geometry goes; the materials' compiled programs stay for the objects' materials.
+    group.traverse((object) => object.geometry?.dispose());
+    view.request();
+  };
+
+  // A one-pixel read waits until the frame drawn so far is rasterized (WebGL's `finish()`
+  // does not wait in Chromium).
+  const onePixel = new Uint8Array(4);
+  /** Waits until the last frame is rasterized. A drag's preview calls it right after
+   * drawing: otherwise the wait comes when the browser composites the frame, at its next
+   * frame, where it holds up the next pointer event and answer. With software WebGL (a
+   * browser without a GPU) rasterizing a frame takes 5–9 ms; a GPU takes a fraction of one. */
+  view.finishFrame = () => {
+    const gl = renderer.getContext();
+    gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, onePixel);
+  };
 
   controls.addEventListener("change", () => {
     clipping(view);
