@@ -5,7 +5,9 @@
 // normal), each move solved by the service and previewed at once (the page evaluates the
 // solution at the mesh's own parameters), committed on release, cancelled by Esc, with undo
 // and redo. Everything here talks to the view through `view` (scene.js) and to the panel
-// through `notify()`.
+// through `notify()`. Over 600 lines because a drag's life (pick, moves, previews, regions,
+// release) shares one closure over the editor's state; what is drawn (objects.js), the view
+// (scene.js) and the evaluation (nurbs.js) are apart.
 
 import * as api from "../api.js";
 import { buildGroup, boxOf, COLOURS, marker, moveMarker, polesOf, previewShape, regionsGroup } from "./objects.js";
