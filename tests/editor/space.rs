@@ -841,6 +841,14 @@ async fn measure_3d_drag() -> Drag3d {
             vec![],
         )
         .await;
+    // The browsers of these tests have no GPU: the page must see WebGL drawn in software,
+    // where it waits for each preview's raster (scene.js `finishFrame`).
+    assert_eq!(
+        page.run("return window.knotshapeSpace.software();", vec![])
+            .await,
+        json!(true),
+        "the page did not recognise SwiftShader's WebGL as software"
+    );
     let at = pixel_of(&page, &surface_point(&app, &surface, [0.5, 0.5]).await).await;
     let moves: Vec<(i64, i64)> = (0..MOVES_3D)
         .map(|k| {

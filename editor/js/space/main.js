@@ -265,6 +265,8 @@ export function setupSpace(elements) {
     timings: editor.timings,
     moves: editor.moves,
     renderMs: () => view.lastRenderMs,
+    /** Whether the page found WebGL drawn in software (it then waits for each preview's raster). */
+    software: () => view.software,
     /** The selected surface's iso-lines: the (u, v) of their chords' ends and the tolerance. */
     isoLines: () => {
       const item = editor.selectedItem();

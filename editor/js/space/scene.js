@@ -13,6 +13,20 @@ const FIELD_OF_VIEW = 35;
 /** The share of the canvas's pixels (per side) drawn during a drag. */
 const INTERACTIVE_RESOLUTION = 0.5;
 
+/** Renderer names of WebGL drawn in software: SwiftShader (Chromium without a GPU), Mesa's
+ * llvmpipe and softpipe, Windows' basic render driver. */
+const SOFTWARE_RENDERER = /SwiftShader|llvmpipe|softpipe|Basic Render|Software/i;
+
+/** Whether `gl` draws in software. Chromium names the renderer only through
+ * `WEBGL_debug_renderer_info`; other browsers in `RENDERER` itself. */
+function drawsInSoftware(gl) {
+  const name = String(gl.getParameter(gl.RENDERER));
+  if (SOFTWARE_RENDERER.test(name)) return true;
+  if (!/^WebKit WebGL$/.test(name)) return false;
+  const info = gl.getExtension("WEBGL_debug_renderer_info");
+  return info !== null && SOFTWARE_RENDERER.test(String(gl.getParameter(info.UNMASKED_RENDERER_WEBGL)));
+}
+
 /** The standard views: the direction from the focus to the eye, and the up vector (z up, as
  * CAD models are drawn). */
 export const VIEWS = {
@@ -66,6 +80,8 @@ export function createView(canvas, onChange) {
     pending: false,
     /** Milliseconds the last render took (the WebGL calls, not the GPU's raster). */
     lastRenderMs: 0,
+    /** Whether WebGL draws in software here (finishFrame waits only then). */
+    software: drawsInSoftware(renderer.getContext()),
   };
 
   const draw = () => {
@@ -100,11 +116,14 @@ export function createView(canvas, onChange) {
   // A one-pixel read waits until the frame drawn so far is rasterized (WebGL's `finish()`
   // does not wait in Chromium).
   const onePixel = new Uint8Array(4);
-  /** Waits until the last frame is rasterized. A drag's preview calls it right after
-   * drawing: otherwise the wait comes when the browser composites the frame, at its next
-   * frame, where it holds up the next pointer event and answer. With software WebGL (a
-   * browser without a GPU) rasterizing a frame takes 5–9 ms; a GPU takes a fraction of one. */
+  /** With WebGL in software, waits until the last frame is rasterized. A drag's preview
+   * calls it right after drawing: otherwise the wait comes when the browser composites the
+   * frame (Chromium without a GPU reads every WebGL frame back then, on the page's main
+   * thread), at its next frame, where it holds up the next pointer event and answer.
+   * Rasterizing a frame takes 5–9 ms in software; a GPU takes a fraction of one and its
+   * frames are not read back, so there it does not wait. */
   view.finishFrame = () => {
+    if (!view.software) return;
     const gl = renderer.getContext();
     gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, onePixel);
   };
