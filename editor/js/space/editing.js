@@ -301,7 +301,7 @@ export function createEditor(view, notify) {
       cancelled: false,
     };
     editor.drag = drag;
-    // The last pick's regions go; this pick's come with its first preview.
+    // The last pick's regions go; this pick's come once the pointer rests.
     clearRegions();
     view.setInteractive(true);
     editor.solutions = [];

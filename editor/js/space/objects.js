@@ -36,6 +36,8 @@ const MATERIALS = {
 
 /** The net's opacity. */
 const NET_OPACITY = 0.8;
+/** A marker's size in pixels. */
+const MARKER_SIZE = 9;
 
 /** The most chords per knot span an iso-line gets (isoSpans). */
 const ISO_MAX_SAMPLES_PER_SPAN = 12;
@@ -296,7 +298,7 @@ function replaceSegments(lines, origin, segments) {
 }
 
 /** A small marker (a screen-sized dot) at `point`. */
-export function marker(point, colour, size = 9) {
+export function marker(point, colour, size = MARKER_SIZE) {
   const geometry = new THREE.BufferGeometry();
   geometry.setAttribute("position", new THREE.BufferAttribute(new Float32Array(point), 3));
   const points = new THREE.Points(geometry, MATERIALS.marker(colour, size));
@@ -380,7 +382,8 @@ export function regionsGroup(origin, answer, kind) {
  * draws, with the objects' materials and attributes, never culled. Drawing it once before
  * the objects makes the browser compile the shaders and pipeline states that a drag would
  * otherwise compile on its first moves, when the regions and the first previews come (with
- * software WebGL about 60 ms, tests/editor/space.rs). */
+ * software WebGL some 50 ms: the first frame with the regions took 16 ms to draw and 35 ms
+ * to rasterize, tests/editor/space.rs). */
 export function warmUpGroup() {
   const group = new THREE.Group();
   const geometry = (vertices, { normals = false, indexed = false } = {}) => {
@@ -400,7 +403,7 @@ export function warmUpGroup() {
   add(new THREE.Line(geometry(2), MATERIALS.line(COLOURS.curve)));
   add(new THREE.LineSegments(geometry(2), MATERIALS.line(COLOURS.net, NET_OPACITY)));
   add(new THREE.Points(geometry(1), MATERIALS.poles()));
-  add(new THREE.Points(geometry(1), MATERIALS.marker(COLOURS.pick, 9)), 10);
+  add(new THREE.Points(geometry(1), MATERIALS.marker(COLOURS.pick, MARKER_SIZE)), 10);
   add(new THREE.Mesh(geometry(3), MATERIALS.region(COLOURS.knotRegion)), 5);
   return group;
 }

@@ -24,10 +24,6 @@
 //! constructions of its numerator), over 600 on purpose: de Boor with its forward-mode
 //! derivatives, the search box and both constructions of the polynomial system share one
 //! indexing of the ratios and are checked against each other.
-//!
-//! One file (about 710 lines of code, then its unit tests) over 600 on purpose: the
-//! primitive's de Boor, its search box and its polynomial forms (by interpolation and by
-//! products) describe one object and are checked against each other.
 
 use smallvec::SmallVec;
 
